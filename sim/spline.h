@@ -1,0 +1,38 @@
+#pragma once
+// A smooth curve through control points, parameterised by arc length: used for the road's
+// centre line and for keyframed camera paths. Centripetal Catmull-Rom (alpha = 0.5): it never
+// forms cusps or self-intersections within a segment, unlike the uniform variant.
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace ambisim {
+
+class Spline3 {
+ public:
+  Spline3() = default;
+  // At least 2 points; consecutive duplicates are dropped. `samples_per_segment` sets the
+  // density of the arc-length table (the position error of at() is far below it).
+  explicit Spline3(std::vector<glm::dvec3> points, int samples_per_segment = 64);
+
+  bool empty() const { return points_.size() < 2; }
+  double length() const { return table_s_.empty() ? 0.0 : table_s_.back(); }
+  const std::vector<glm::dvec3>& control_points() const { return points_; }
+
+  // Position and unit tangent at arc length s (clamped to [0, length]).
+  glm::dvec3 at(double s) const;
+  glm::dvec3 tangent(double s) const;
+  // Arc length of the point on the curve closest to p (piecewise-linear search, then refined).
+  double closest_s(const glm::dvec3& p) const;
+
+ private:
+  // Curve parameter t in [0, segments] at arc length s.
+  double param_at(double s) const;
+  glm::dvec3 eval(double t) const;
+
+  std::vector<glm::dvec3> points_;
+  std::vector<double> table_t_;  // parameter samples
+  std::vector<double> table_s_;  // cumulative arc length at each sample
+};
+
+}  // namespace ambisim
