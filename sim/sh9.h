@@ -29,6 +29,16 @@ inline constexpr double kShC3 = 0.743125;
 inline constexpr double kShC4 = 0.886227;
 inline constexpr double kShC5 = 0.247708;
 
+// Clamped-cosine kernel per band, A_l = pi, 2 pi / 3, pi / 4 (R&H 2001, eq. 8/9):
+// E(n) = sum_lm A_l L_lm Y_lm(n). The c1..c5 above are these times the basis constants,
+// rounded to 6 digits; sh_irradiance uses the unrounded products.
+inline constexpr double kShA0 = 3.14159265358979323846;
+inline constexpr double kShA1 = 2.0 * kShA0 / 3.0;
+inline constexpr double kShA2 = kShA0 / 4.0;
+
+// Band l of coefficient k (0 for k = 0, 1 for k = 1..3, 2 for k = 4..8).
+constexpr int sh_band(int k) { return k == 0 ? 0 : (k < 4 ? 1 : 2); }
+
 using ShBasis = std::array<double, kShCount>;
 
 // The 9 basis functions at a unit direction. Input must be normalised (|d| = 1 within 1e-6).
