@@ -1,0 +1,30 @@
+#pragma once
+// Maximum mip pyramid over a height grid (Tevs et al. 2008, "maximum mipmaps"): node (l, i, j)
+// holds the highest column among the 2^l x 2^l cells it covers, so a ray segment that stays
+// above a node's maximum can skip all of those cells at once.
+#include <vector>
+
+namespace ambisim {
+
+class HeightPyramid {
+ public:
+  // Padding cells beyond the grid (to a power-of-two square) are empty space.
+  static constexpr float kEmpty = -1.0e30f;
+
+  HeightPyramid() = default;
+  // `h` is nx x ny, row-major (index iy * nx + ix); nx, ny >= 1.
+  HeightPyramid(const std::vector<float>& h, int nx, int ny);
+
+  int levels() const { return static_cast<int>(level_.size()); }
+  int size(int level) const { return side_ >> level; }  // nodes per side at `level`
+  // Level 0 is the cells themselves; (ix, iy) must be within [0, size(level)).
+  float max_at(int level, int ix, int iy) const {
+    return level_[level][static_cast<std::size_t>(iy) * size(level) + ix];
+  }
+
+ private:
+  int side_ = 0;
+  std::vector<std::vector<float>> level_;
+};
+
+}  // namespace ambisim
