@@ -83,7 +83,7 @@ TEST_CASE("an unknown parameter lists the valid ones with their defaults", "[pol
   CHECK(none == "--set k=1: unknown parameter \"k\": planner \"oracle\" has no parameters");
 }
 
-TEST_CASE("--set values are parsed by their look and validated", "[policies]") {
+TEST_CASE("CLI --set values are parsed by their look and validated", "[policies]") {
   const auto p = planner_params_from_cli(
       "nearest", {"spacing_m=4", "max_probes=12", "blend_s=1.5e-1", "predict=true"});
   CHECK(p.number("spacing_m") == 4.0);

@@ -1,0 +1,29 @@
+// ambisim: where should a game engine capture ambient-light probes around a moving camera?
+// Thin main: subcommands live in cmd_*.cpp; all the work is in the libraries.
+#include <exception>
+#include <iostream>
+
+#include "apps/commands.h"
+#include "sim/input_error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"ambisim: ambient-light probe planning simulator"};
+  app.require_subcommand(1);
+  ambisim::cli::add_probe_command(app);
+  ambisim::cli::add_world_command(app);
+  ambisim::cli::add_run_command(app);
+  ambisim::cli::add_planners_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  } catch (const ambisim::InputError& e) {
+    std::cerr << "ambisim: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "ambisim: internal error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,13 @@
+#pragma once
+// Subcommands of the ambisim CLI: each registers its options and a callback on the app.
+// The callbacks throw ambisim::InputError for bad input; main() turns that into exit code 2.
+#include <CLI/CLI.hpp>
+
+namespace ambisim::cli {
+
+void add_probe_command(CLI::App& app);
+void add_world_command(CLI::App& app);
+void add_run_command(CLI::App& app);
+void add_planners_command(CLI::App& app);
+
+}  // namespace ambisim::cli

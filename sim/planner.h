@@ -1,0 +1,112 @@
+#pragma once
+// The one interface every sampling planner implements (OMPL-style: the simulator, the sweep
+// and the shared contract test only ever see this). Implementations live in policies/.
+//
+// The contract, per frame (see sim/simulator.cpp):
+//   1. plan(ctx)      -> capture requests in priority order. The simulator starts at most
+//                        ctx.startable_captures of them, in order; each one it does not start
+//                        is refused (counted, and reported through refused()).
+//   2. started(tag)   <- for each request the simulator actually starts.
+//   3. update(ctx)       lifetimes, fades, pruning (the only place time moves for a planner).
+//   4. lookup(p)         interpolated coefficients for a receiver, any number of times.
+//   5. deliver(probe) <- probes whose six faces are all rendered (usable from the next frame).
+// The frame context is the only clock. A planner never sees the reference solution.
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
+
+#include "sim/sh9.h"
+
+namespace ambisim {
+
+class Spline3;
+
+// World knowledge a game engine legitimately has (never the lighting solution).
+struct WorldQueries {
+  std::function<double(double, double)> ground_height;   // terrain, without canopy
+  std::function<double(double, double)> surface_height;  // terrain or canopy top
+  const Spline3* road = nullptr;                         // may be null
+  glm::dvec3 bounds_min{0.0};
+  glm::dvec3 bounds_max{0.0};
+};
+
+struct FrameContext {
+  std::int64_t frame = 0;
+  double time = 0.0;  // seconds since the start; the only clock a planner sees
+  double dt = 0.0;    // this frame's step
+  glm::dvec3 camera_position{0.0};
+  glm::dvec3 camera_velocity{0.0};
+  bool camera_cut = false;       // the camera teleported this frame
+  double faces_per_frame = 1.0;  // the capture budget (cube faces per frame)
+  int face_size = 16;            // cube face resolution of captures
+  int startable_captures = 0;    // how many new captures plan() may start this frame
+  const WorldQueries* world = nullptr;
+  // Frames from a capture's start until it is usable, at the current budget: ceil(6 / faces).
+  double capture_latency_s() const;
+};
+
+struct CaptureRequest {
+  glm::dvec3 position{0.0};
+  std::uint64_t tag = 0;  // the planner's own id for this capture; echoed on delivery
+};
+
+struct FinishedProbe {
+  std::uint64_t tag = 0;
+  glm::dvec3 position{0.0};
+  Sh9Rgb sh;
+  double requested_time = 0.0;
+  double finished_time = 0.0;
+};
+
+// Which stored probes contributed to a lookup, for coverage and staleness.
+struct Contributor {
+  std::uint64_t tag = 0;
+  float weight = 0.0f;
+};
+
+struct LookupResult {
+  Sh9Rgb sh;
+  std::array<Contributor, 8> contributors{};
+  int contributor_count = 0;
+  bool fell_back = false;  // no probe served this point (a default/coarse answer)
+  double spacing_m = 0.0;  // the spacing of the probes used (0 = exact, inf = none)
+  double data_time = 0.0;  // capture time of the (weighted) data used, for staleness
+};
+
+struct PlannerStats {
+  std::int64_t live_probes = 0;  // coefficient sets held
+  std::int64_t nodes = 0;        // structure nodes (0 if the planner has none)
+  std::int64_t bytes = 0;        // memory held by coefficients and structure
+};
+
+class Planner {
+ public:
+  virtual ~Planner() = default;
+  virtual std::string name() const = 0;
+  virtual nlohmann::json params() const = 0;  // every parameter, echoed into results
+
+  virtual std::vector<CaptureRequest> plan(const FrameContext& ctx) = 0;
+  virtual void started(std::uint64_t tag) = 0;
+  virtual void refused(std::uint64_t /*tag*/) {}
+  virtual void deliver(const FinishedProbe& probe) = 0;
+  virtual void update(const FrameContext& ctx) = 0;
+  virtual LookupResult lookup(const glm::dvec3& p) const = 0;
+  virtual PlannerStats stats() const = 0;
+
+  // Per-receiver capture planners (per_object, oracle) need to know the receivers.
+  struct ReceiverView {
+    std::uint64_t id;
+    glm::dvec3 position;
+    glm::dvec3 velocity;
+  };
+  virtual void set_receivers(const std::vector<ReceiverView>& /*receivers*/) {}
+  // True for the oracle: the simulator captures at every lookup point without budget.
+  virtual bool ignores_budget() const { return false; }
+};
+
+}  // namespace ambisim

@@ -1,0 +1,35 @@
+#pragma once
+// The self-describing output of one run: DIR/result.json (format version, scenario name and
+// hashes, seeds, planner and parameters, exposure, summary, per-frame series) and
+// DIR/frames.csv. Measured timings go in result.json's separate "timing" section; everything
+// else is deterministic (byte-identical for the same inputs).
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "sim/output_file.h"
+#include "sim/scenario.h"
+#include "sim/simulator.h"
+
+namespace ambisim {
+
+inline constexpr int kResultFormatVersion = 1;
+
+struct RunIdentity {
+  std::string planner;
+  nlohmann::json planner_params;
+};
+
+// The deterministic part of result.json (no timing).
+nlohmann::ordered_json result_json(const Scenario& scenario, const RunIdentity& id,
+                                   const RunResult& result);
+
+// Writes DIR/result.json (with the timing section appended) and DIR/frames.csv, creating DIR
+// if needed. Refuses to overwrite either file unless overwrite is allow; files are written
+// atomically, so an interrupted run leaves no partial result.
+void write_run_output(const std::string& dir, const Scenario& scenario, const RunIdentity& id,
+                      const RunResult& result, Overwrite overwrite);
+
+std::string frames_csv(const RunResult& result);
+
+}  // namespace ambisim

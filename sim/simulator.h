@@ -1,0 +1,60 @@
+#pragma once
+// The referee: flies the scenario's camera, grants captures within the budget, lights the
+// receivers through a planner and scores the result (SPEC section 3).
+//
+// Per frame, in this order:
+//   1. the motion advances (camera, receivers);
+//   2. the planner sees the receivers and plans; the simulator starts at most
+//      `startable_captures` requests (the budget's free faces after those owed to captures in
+//      flight) and refuses the rest;
+//   3. granted faces are rendered, oldest capture first (a probe takes 6 faces: at the default
+//      1 face per frame, 6 frames, while the camera keeps moving);
+//   4. the planner updates (lifetimes, fades);
+//   5. every live receiver and every coverage demand point is looked up and scored;
+//   6. probes whose sixth face was rendered this frame are projected and delivered: usable from
+//      the next frame.
+// A planner that ignores the budget (the oracle) gets every request rendered and delivered at
+// once, before its lookups.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "sim/metrics.h"
+#include "sim/planner.h"
+#include "sim/reference_track.h"
+#include "sim/scenario.h"
+
+namespace ambisim {
+
+class World;
+
+// Measured, not simulated: wall-clock costs, reported apart from the deterministic results.
+struct RunTiming {
+  double total_s = 0.0;
+  double planner_s = 0.0;  // plan + update + deliver
+  double lookup_s = 0.0;
+  std::int64_t lookups = 0;
+  double capture_s = 0.0;  // face rendering and projection
+  std::int64_t frames = 0;
+  nlohmann::ordered_json to_json() const;
+};
+
+struct RunResult {
+  Summary summary;
+  std::vector<FrameRow> frames;
+  RunTiming timing;
+  std::int64_t captures_started = 0;
+  std::int64_t captures_delivered = 0;
+  double exposure = 0.0;
+};
+
+struct SimulationOptions {
+  bool keep_frames = true;  // keep the per-frame series
+};
+
+RunResult simulate(const Scenario& scenario, const World& world, const ReferenceTrack& reference,
+                   Planner& planner, const SimulationOptions& options = {});
+
+}  // namespace ambisim

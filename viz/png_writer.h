@@ -1,0 +1,15 @@
+#pragma once
+// PNG output of 8-bit images through VTK's PNG writer (atomic: never a partial file).
+#include <string>
+
+#include "sim/image.h"
+#include "sim/output_file.h"
+
+namespace ambisim {
+
+void write_png(const ImageRgb8& image, const std::string& path, Overwrite overwrite);
+
+// Reads a PNG back (used by tests to check what was written).
+ImageRgb8 read_png(const std::string& path);
+
+}  // namespace ambisim
