@@ -8,7 +8,8 @@
 //                    "band_half_width_m" >= 0 [40], "min_height_m" >= 0 [0.5],
 //                    "max_height_m" >= min [2], "lifetime_s" > 0 [30],
 //                    "behind_margin_m" >= 0 [10], "max_live" >= 0 [1000]}
-//   traffic         absent = none; {"rate_per_s" >= 0 [10], "speed_mps" >= 0 [30],
+//   traffic         absent = none; {"rate_per_s" >= 0 [10], "speed_mps" >= 0 [30], "speed_spread"
+//   0..0.9 [0],
 //                    "window_behind_m" >= 0 [200], "window_ahead_m" >= 0 [800],
 //                    "lane_offset_m" [road_width / 4], "height_m" >= 0 [1], "max_live" >= 0 [500]}
 #include "sim/receivers.h"
@@ -87,6 +88,7 @@ ReceiversRecord parse_receivers(ObjectReader& r) {
     TrafficRecord tr;
     tr.rate_per_s = t->number("rate_per_s", tr.rate_per_s, Range::closed(0.0, 1e4));
     tr.speed_mps = t->number("speed_mps", tr.speed_mps, Range::closed(0.0, 1e3));
+    tr.speed_spread = t->number("speed_spread", tr.speed_spread, Range::closed(0.0, 0.9));
     tr.window_behind_m = t->number("window_behind_m", tr.window_behind_m, Range::non_negative());
     tr.window_ahead_m = t->number("window_ahead_m", tr.window_ahead_m, Range::non_negative());
     if (t->has("lane_offset_m")) {
@@ -224,13 +226,13 @@ void ReceiverSet::update_traffic(double time, const CameraState& camera) {
   const double hi = std::min(std::max(e1, e2), road.length());
 
   auto s_of = [&](const Receiver& r) {
-    return r.road_s0 + r.lane_direction * T.speed_mps * (time - r.spawn_time);
+    return r.road_s0 + r.lane_direction * r.road_speed * (time - r.spawn_time);
   };
   auto place = [&](Receiver& r) {
     const double s = s_of(r);
     r.position = lane_point(road, s, r.lane_direction, lane_offset_, T.height_m);
-    r.velocity =
-        (r.lane_direction * T.speed_mps) * lane_derivative(road, s, r.lane_direction, lane_offset_);
+    r.velocity = (r.lane_direction * r.road_speed) *
+                 lane_derivative(road, s, r.lane_direction, lane_offset_);
   };
   auto left = [&](const Receiver& r) {
     if (r.kind != ReceiverKind::traffic) return false;
@@ -259,6 +261,8 @@ void ReceiverSet::update_traffic(double time, const CameraState& camera) {
     Receiver& r = spawn(ReceiverKind::traffic, time);
     r.road_s0 = lo + uniform(kTrafficStream, n, 0) * (hi - lo);
     r.lane_direction = uniform(kTrafficStream, n, 1) < 0.5 ? 1 : -1;
+    r.road_speed =
+        T.speed_mps * (1.0 + T.speed_spread * (2.0 * uniform(kTrafficStream, n, 2) - 1.0));
     place(r);
     ++live_cars;
   }

@@ -30,6 +30,7 @@ struct Receiver {
   // Traffic motion: road arc length at spawn and lane direction (+1 / -1 along the road).
   double road_s0 = 0.0;
   int lane_direction = 0;
+  double road_speed = 0.0;  // traffic: this vehicle's speed along the road (m/s)
 };
 
 struct CameraObjectRecord {
@@ -55,6 +56,10 @@ struct LodPropsRecord {
 struct TrafficRecord {
   double rate_per_s = 10.0;  // both carriageways together
   double speed_mps = 30.0;
+  // Each vehicle drives at speed_mps x (1 + speed_spread x u), u uniform in [-1, 1]: real
+  // traffic is not a convoy, and equal speeds would keep same-direction cars beside the camera
+  // for ever.
+  double speed_spread = 0.0;
   double window_behind_m = 200.0;  // road window around the camera, in its direction of travel
   double window_ahead_m = 800.0;
   std::optional<double> lane_offset_m;  // right of the lane's direction [road_width / 4]
