@@ -1,5 +1,6 @@
 #include "sim/reference_track.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <map>
@@ -9,6 +10,7 @@
 #include "sim/irradiance_reference.h"
 #include "sim/scenario.h"
 #include "sim/scenario_motion.h"
+#include "sim/sh_projection.h"
 #include "sim/world.h"
 
 namespace ambisim {
@@ -27,6 +29,11 @@ struct Sample {
 };
 
 }  // namespace
+
+const Sh9Rgb* ReferenceTrack::find_sh(const glm::dvec3& p) const {
+  auto it = sh_by_position.find(key_of(p));
+  return it == sh_by_position.end() ? nullptr : &it->second;
+}
 
 std::shared_ptr<const ReferenceTrack> compute_reference_track(const Scenario& scenario,
                                                               const World& world) {
@@ -51,31 +58,91 @@ std::shared_ptr<const ReferenceTrack> compute_reference_track(const Scenario& sc
 
   // Pass 2: captures at key samples (cached by exact position), interpolation in between.
   const IrradianceIntegrator integrator(scenario.reference.face_size, track->normals);
+  const ShProjector& projector = projector_for(scenario.reference.face_size);
+  track->face_size = scenario.reference.face_size;
   std::map<PositionKey, std::vector<Rgb>> cache;
   auto reference_at = [&](const glm::dvec3& p) -> const std::vector<Rgb>& {
     auto [it, inserted] = cache.try_emplace(key_of(p));
     if (inserted) {
-      it->second = integrator.integrate(capture(world, p, scenario.reference.face_size));
+      const CubeMap cube = capture(world, p, scenario.reference.face_size);
+      it->second = integrator.integrate(cube);
+      track->sh_by_position[key_of(p)] = projector.project(cube);
       ++track->captures;
     }
     return it->second;
   };
   const double interval = scenario.reference.interval_s;
+  auto store = [&](const Sample& smp) {
+    const std::vector<Rgb>& v = reference_at(smp.position);
+    std::copy(v.begin(), v.end(), track->irradiance.begin() + smp.slot * nn);
+  };
+  // Phase 1: key samples of every receiver: all of them, or the first in each time bucket
+  // plus the last one.
+  std::map<std::uint64_t, std::vector<std::size_t>> keys_of;
   for (auto& [id, samples] : by_receiver) {
-    // Key samples: all of them, or the first in each time bucket plus the last one.
-    std::vector<std::size_t> keys;
+    std::vector<std::size_t>& keys = keys_of[id];
     for (std::size_t k = 0; k < samples.size(); ++k) {
       const bool last = k + 1 == samples.size();
       if (interval <= 0.0 || k == 0 || last ||
           std::floor(samples[k].time / interval) != std::floor(samples[k - 1].time / interval)) {
         keys.push_back(k);
+        store(samples[k]);
       }
     }
-    for (std::size_t a = 0; a < keys.size(); ++a) {
-      const Sample& s = samples[keys[a]];
-      const std::vector<Rgb>& v = reference_at(s.position);
-      std::copy(v.begin(), v.end(), track->irradiance.begin() + s.slot * nn);
+  }
+  // The display exposure, from the key samples (with every frame keyed: from all of them).
+  {
+    std::vector<Rgb> keyed;
+    for (auto& [id, samples] : by_receiver) {
+      for (std::size_t k : keys_of[id]) {
+        const Rgb* v = &track->irradiance[samples[k].slot * nn];
+        keyed.insert(keyed.end(), v, v + nn);
+      }
     }
+    track->exposure = scenario.metrics.exposure > 0.0
+                          ? scenario.metrics.exposure
+                          : reference_exposure(keyed, scenario.metrics.exposure_key);
+  }
+  // Phase 2: adaptive refinement. Where the displayed colour of two neighbouring keys differs
+  // by more than refine_de at any normal, the frame between them is captured too, recursively,
+  // so abrupt true changes (a shadow edge, a cutting wall) are resolved frame by frame and only
+  // smooth stretches are interpolated.
+  auto differs = [&](const Sample& a, const Sample& b) {
+    for (std::size_t m = 0; m < nn; ++m) {
+      if (display_difference(track->irradiance[a.slot * nn + m], track->irradiance[b.slot * nn + m],
+                             track->exposure) > scenario.reference.refine_de) {
+        return true;
+      }
+    }
+    return false;
+  };
+  for (auto& [id, samples] : by_receiver) {
+    std::vector<std::size_t>& keys = keys_of[id];
+    std::vector<std::size_t> refined;
+    std::vector<std::pair<std::size_t, std::size_t>> stack;
+    for (std::size_t a = 0; a + 1 < keys.size(); ++a) {
+      refined.push_back(keys[a]);
+      stack.assign(1, {keys[a], keys[a + 1]});
+      std::vector<std::size_t> added;
+      while (!stack.empty()) {
+        const auto [lo, hi] = stack.back();
+        stack.pop_back();
+        if (hi - lo < 2 || !differs(samples[lo], samples[hi])) continue;
+        const std::size_t mid = lo + (hi - lo) / 2;
+        store(samples[mid]);
+        added.push_back(mid);
+        stack.push_back({lo, mid});
+        stack.push_back({mid, hi});
+      }
+      std::sort(added.begin(), added.end());
+      refined.insert(refined.end(), added.begin(), added.end());
+    }
+    if (!keys.empty()) refined.push_back(keys.back());
+    keys = std::move(refined);
+  }
+  // Phase 3: linear interpolation in time between consecutive keys.
+  for (auto& [id, samples] : by_receiver) {
+    const std::vector<std::size_t>& keys = keys_of[id];
     for (std::size_t a = 0; a + 1 < keys.size(); ++a) {
       const Sample& s0 = samples[keys[a]];
       const Sample& s1 = samples[keys[a + 1]];
@@ -90,11 +157,6 @@ std::shared_ptr<const ReferenceTrack> compute_reference_track(const Scenario& sc
       }
     }
   }
-  // One display exposure for the whole scenario, from the reference alone.
-  track->exposure = scenario.metrics.exposure > 0.0
-                        ? scenario.metrics.exposure
-                        : reference_exposure(track->irradiance, scenario.metrics.exposure_key);
   return track;
 }
-
 }  // namespace ambisim

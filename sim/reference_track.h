@@ -9,13 +9,16 @@
 // moving receiver is captured on a time grid (the first frame in each interval, and its last
 // frame) and interpolated linearly in time between those keys. tests/sim/test_reference_track
 // measures what that shortcut costs in CIEDE2000.
+#include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "sim/rgb.h"
+#include "sim/sh9.h"
 
 namespace ambisim {
 
@@ -36,6 +39,13 @@ struct ReferenceTrack {
   std::int64_t slots_interpolated = 0;
 
   const Rgb* values(std::size_t slot) const { return &irradiance[slot * normals.size()]; }
+
+  // Memo of every reference capture, projected to SH9, by exact position (bit pattern). A
+  // capture at the same position and resolution is the same cube, so the oracle, which
+  // captures at the reference resolution, reuses these instead of rendering them again.
+  int face_size = 0;
+  std::map<std::array<std::uint64_t, 3>, Sh9Rgb> sh_by_position;
+  const Sh9Rgb* find_sh(const glm::dvec3& p) const;
 };
 
 // Runs the scenario's motion (no planner) and computes the track. Single-threaded and

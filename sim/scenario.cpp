@@ -25,6 +25,7 @@ ReferenceSettings parse_reference(ObjectReader& r) {
   ReferenceSettings s;
   s.face_size = r.integer("face_size", s.face_size, Range::closed(4, 256));
   s.interval_s = r.number("interval_s", s.interval_s, Range::closed(0.0, 10.0));
+  s.refine_de = r.number("refine_de", s.refine_de, Range::positive());
   r.finish();
   return s;
 }

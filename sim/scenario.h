@@ -18,9 +18,11 @@ namespace ambisim {
 
 // How the reference irradiance (the truth a planner is scored against) is computed.
 struct ReferenceSettings {
-  int face_size = 16;       // cube face resolution of reference captures at receivers
+  int face_size = 24;       // cube face resolution of reference captures at receivers
   double interval_s = 0.0;  // 0: every frame; > 0: moving receivers sampled on this time grid
                             // and interpolated linearly in time between samples
+  double refine_de = 0.25;  // with interval_s > 0: a frame between two samples is captured too
+                            // (recursively) while their displayed colours differ by more
 };
 
 struct Scenario {
