@@ -25,6 +25,7 @@ struct ProbeOptions {
   int size = 16;
   bool json = false;
   bool force = false;
+  bool above_ground = false;
   std::string cube_png;
 };
 
@@ -41,7 +42,8 @@ void run_probe(const ProbeOptions& o) {
     check_output_path(o.cube_png, o.force ? Overwrite::allow : Overwrite::refuse);
   }
   const World world(load_world_params(o.scenario));
-  const glm::dvec3 p(o.at[0], o.at[1], o.at[2]);
+  const glm::dvec3 p(o.at[0], o.at[1],
+                     o.at[2] + (o.above_ground ? world.ground_height(o.at[0], o.at[1]) : 0.0));
   const CubeMap cube = capture(world, p, o.size);
   const Sh9Rgb sh = projector_for(o.size).project(cube);
 
@@ -95,6 +97,7 @@ void add_probe_command(CLI::App& app) {
       ->required();
   cmd->add_option("--at", o->at, "capture position X,Y,Z in metres")->required()->delimiter(',');
   cmd->add_option("--size", o->size, "cube face size in texels")->check(CLI::Range(1, 512));
+  cmd->add_flag("--above-ground", o->above_ground, "Z is a height above the ground");
   cmd->add_flag("--json", o->json, "print JSON instead of a table");
   cmd->add_option("--cube", o->cube_png, "write the tone-mapped cube cross to this PNG");
   cmd->add_flag("--force", o->force, "overwrite existing output files");

@@ -13,7 +13,7 @@ echo "== world map" >&2
 run "$AMBISIM" world "$SCEN/default_world.json" --png "$OUT/world.png" --force
 echo "== probes" >&2
 while read -r name at; do
-  run "$AMBISIM" probe "$SCEN/default_world.json" --at "$at" --cube "$OUT/probe_$name.png" \
+  run "$AMBISIM" probe "$SCEN/default_world.json" --at "$at" --above-ground --cube "$OUT/probe_$name.png" \
     --json --force >"$OUT/probe_$name.json"
 done <"$SCEN/demo_probes.txt"
 echo "ambisim demo: outputs in $OUT" >&2
