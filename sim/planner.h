@@ -78,6 +78,18 @@ struct LookupResult {
   double data_time = 0.0;  // capture time of the (weighted) data used, for staleness
 };
 
+// One node (or probe) of a planner's structure, for the VTK views: where it is, how big, and
+// what it holds. Planners without a spatial structure report their probes as zero-size nodes.
+struct ProbeNodeView {
+  glm::dvec3 centre{0.0};
+  glm::dvec3 half_extent{0.0};  // half the node's size per axis (0 for a bare probe)
+  int depth = 0;
+  bool has_data = false;   // holds usable coefficients
+  bool in_flight = false;  // a capture for it is being rendered
+  double age_s = 0.0;      // time since its data was captured
+  Sh9Rgb sh;               // the coefficients it holds (zero when it holds none)
+};
+
 struct PlannerStats {
   std::int64_t live_probes = 0;  // coefficient sets held
   std::int64_t nodes = 0;        // structure nodes (0 if the planner has none)
@@ -107,6 +119,8 @@ class Planner {
   virtual void set_receivers(const std::vector<ReceiverView>& /*receivers*/) {}
   // True for the oracle: the simulator captures at every lookup point without budget.
   virtual bool ignores_budget() const { return false; }
+  // The structure for views (VTK), at the current time. Optional.
+  virtual void describe_nodes(std::vector<ProbeNodeView>& /*out*/) const {}
 };
 
 }  // namespace ambisim
