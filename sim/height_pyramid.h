@@ -21,6 +21,8 @@ class HeightPyramid {
   float max_at(int level, int ix, int iy) const {
     return level_[level][static_cast<std::size_t>(iy) * size(level) + ix];
   }
+  // Raw row-major data of one level (size(level)^2 values), for tight traversal loops.
+  const float* level_data(int level) const { return level_[level].data(); }
 
  private:
   int side_ = 0;

@@ -1,6 +1,7 @@
 #include "sim/ray_march.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -163,6 +164,160 @@ struct Traversal {
   }
 };
 
+// --- Fast traversal -------------------------------------------------------------------------
+//
+// The recursive traversal above is the definition; the loop below reproduces its result bit
+// for bit at a fraction of the cost. What the recursion returns is fixed by its sequence of
+// leaf pieces: the cells the ray crosses, in order, each with the span [ta, tb] between the
+// crossings of its walls (computed as (plane - o) / d with the plane coordinates the recursion
+// uses), and the first leaf that passes the height test and column_entry. Node culling above
+// the leaves only skips leaves that would fail the test anyway (z is monotone in t, a node's
+// maximum bounds its cells), so any conservative culling gives the same answer.
+//
+// The loop walks the max-mip nodes front to back (descend when a node may hold the hit, skip
+// it and ascend when it cannot) with cheap reciprocal arithmetic and an extra height margin,
+// and recomputes the exact leaf span, test and entry only at leaves it cannot cull. The
+// recursion assigns each piece to a child by the piece's midpoint, which matches the
+// geometric cell unless the ray passes within rounding error of a cell corner (an x and a y
+// crossing nearly simultaneous) or of a wall at the span's ends; whenever the ray comes
+// within kTieM metres of such a configuration the fast loop gives up and the recursion
+// decides.
+
+constexpr double kTieM = 1e-7;        // separation below which a configuration counts as a tie
+constexpr double kCullMargin = 1e-5;  // extra height margin of the approximate node culling
+
+// Coordinate of cell-boundary plane m (0 < m), computed exactly as the recursion computes the
+// split plane of a node: (2 i + 1) * (cell * 2^(level - 1)) with m = (2 i + 1) 2^(level - 1).
+double plane_coord(double c, int m) {
+  const int k = std::countr_zero(static_cast<unsigned>(m));
+  return static_cast<double>(m >> k) * (c * static_cast<double>(1 << k));
+}
+
+// Leaf cell of coordinate x on one axis (n cells of size c), or false when x lies so close to
+// an interior wall that the recursion's choice of side is not certain (k converts the
+// distance into the separation measure).
+bool axis_cell(double x, double c, double inv_c, int n, double k, int& i) {
+  // Truncation instead of floor/round (no libm calls on SSE2; negative x clamps to cell 0) and
+  // an approximate 1 / c: near a wall, where either could be off by one, the tie test fails.
+  const double f = std::clamp(x * inv_c, -1.0, n + 1.0);
+  i = std::clamp(static_cast<int>(f), 0, n - 1);
+  const int m = static_cast<int>(f + 0.5);  // nearest wall (f >= -0.5; walls below 1 are edges)
+  return !(m > 0 && m < n && std::abs(x - m * c) * k < kTieM);
+}
+
+enum class FastResult { Hit, Miss, Undecided };
+
+FastResult march_fast(const World& w, const LocalRay& r, double t0, double t1, RayHit& hit) {
+  const double dx = r.d.x, dy = r.d.y, dz = r.d.z;
+  const double adx = std::abs(dx), ady = std::abs(dy);
+  // Nearly vertical or nearly axis-parallel rays: the culling margins assume |d.x|, |d.y| are
+  // either 0 or not tiny. (Vertical rays cross no wall; the recursion is cheap for them.)
+  if (adx < 1e-4 && ady < 1e-4) return FastResult::Undecided;
+  if ((dx != 0.0 && adx < 1e-4) || (dy != 0.0 && ady < 1e-4)) return FastResult::Undecided;
+  const HeightPyramid& pyr = w.pyramid();
+  const double c = w.cell_m();
+  const int nx = w.nx(), ny = w.ny(), top = pyr.levels() - 1, side = pyr.size(0);
+  // A piece of length dt keeps its midpoint sep * dt / 2 away from the walls it lies between.
+  const double sep = std::min(dx != 0.0 ? adx : 1.0, dy != 0.0 ? ady : 1.0);
+  const double kx = dx != 0.0 ? sep / adx : 1.0, ky = dy != 0.0 ? sep / ady : 1.0;
+  // Approximate node-wall crossings in cell units: t = (wall - o / c) * (c / d).
+  const double inv_c = 1.0 / c, oxc = r.o.x * inv_c, oyc = r.o.y * inv_c;
+  const double idx = dx != 0.0 ? c / dx : 0.0, idy = dy != 0.0 ? c / dy : 0.0;
+
+  int ix, iy;
+  if (!axis_cell(r.o.x + dx * t0, c, inv_c, nx, kx, ix) ||
+      !axis_cell(r.o.y + dy * t0, c, inv_c, ny, ky, iy)) {
+    return FastResult::Undecided;
+  }
+  // Start at the largest node around the start that lies wholly below the ray's start
+  // height (low in cuttings and forests, high in the air); the walk ascends from there.
+  int level = 0;
+  {
+    const double z0 = r.o.z + dz * t0;
+    while (level < top && pyr.max_at(level + 1, ix >> (level + 1), iy >> (level + 1)) < z0) {
+      ++level;
+    }
+  }
+  double t = t0;
+  for (;;) {
+    const int mx = ix >> level, my = iy >> level;
+    double tx = kInf, ty = kInf;
+    int bx = 0, by = 0;  // the walls crossed when leaving the node through x / y
+    if (dx > 0.0) {
+      bx = (mx + 1) << level;
+      tx = (bx - oxc) * idx;
+    } else if (dx < 0.0) {
+      bx = mx << level;
+      tx = (bx - oxc) * idx;
+    }
+    if (dy > 0.0) {
+      by = (my + 1) << level;
+      ty = (by - oyc) * idy;
+    } else if (dy < 0.0) {
+      by = my << level;
+      ty = (by - oyc) * idy;
+    }
+    const double t_exit = std::min(std::min(tx, ty), t1);
+    const double z_low = dz < 0.0 ? r.o.z + dz * t_exit : r.o.z + dz * t;
+    const double h_max = pyr.level_data(
+        level)[static_cast<std::size_t>(my) * static_cast<std::size_t>(side >> level) +
+               static_cast<std::size_t>(mx)];
+    if (!(z_low > h_max + kZEps + kCullMargin)) {
+      if (level > 0) {
+        --level;
+        continue;
+      }
+      // A leaf that may hold the hit: the recursion's exact span and test.
+      double ta = t0, tb = t1;
+      if (dx != 0.0) {
+        const int m_in = dx > 0.0 ? ix : ix + 1, m_out = dx > 0.0 ? ix + 1 : ix;
+        if (m_in > 0 && m_in < nx) ta = std::max(ta, (plane_coord(c, m_in) - r.o.x) / dx);
+        if (m_out > 0 && m_out < nx) tb = std::min(tb, (plane_coord(c, m_out) - r.o.x) / dx);
+      }
+      if (dy != 0.0) {
+        const int m_in = dy > 0.0 ? iy : iy + 1, m_out = dy > 0.0 ? iy + 1 : iy;
+        if (m_in > 0 && m_in < ny) ta = std::max(ta, (plane_coord(c, m_in) - r.o.y) / dy);
+        if (m_out > 0 && m_out < ny) tb = std::min(tb, (plane_coord(c, m_out) - r.o.y) / dy);
+      }
+      if ((tb - ta) * sep < kTieM) return FastResult::Undecided;
+      const double za = r.o.z + dz * ta, zb = r.o.z + dz * tb;
+      if (!(std::min(za, zb) > pyr.max_at(0, ix, iy) + kZEps) && column_entry(w, r, ix, iy, hit)) {
+        return FastResult::Hit;
+      }
+    }
+    // Leave the node.
+    const double t_wall = std::min(tx, ty);
+    const bool wall_x = tx < ty;
+    const int b = wall_x ? bx : by, n_axis = wall_x ? nx : ny;
+    if (b > 0 && b < n_axis && std::abs(t1 - t_wall) * sep < kTieM) return FastResult::Undecided;
+    if (t_wall >= t1) return FastResult::Miss;
+    if (std::abs(tx - ty) * sep < kTieM) return FastResult::Undecided;
+    if (wall_x) {
+      ix = dx > 0.0 ? bx : bx - 1;
+      if (ix < 0 || ix >= nx) return FastResult::Miss;
+      if (dy != 0.0) {
+        const int lo = my << level, hi = std::min(((my + 1) << level) - 1, ny - 1);
+        int cy;
+        if (!axis_cell(r.o.y + dy * tx, c, inv_c, ny, ky, cy)) return FastResult::Undecided;
+        iy = std::clamp(cy, lo, hi);
+      }
+      t = tx;
+    } else {
+      iy = dy > 0.0 ? by : by - 1;
+      if (iy < 0 || iy >= ny) return FastResult::Miss;
+      if (dx != 0.0) {
+        const int lo = mx << level, hi = std::min(((mx + 1) << level) - 1, nx - 1);
+        int cx;
+        if (!axis_cell(r.o.x + dx * ty, c, inv_c, nx, kx, cx)) return FastResult::Undecided;
+        ix = std::clamp(cx, lo, hi);
+      }
+      t = ty;
+    }
+    // Entering a new parent (grandparent) node: cull at its size again.
+    for (int a = 0; a < 2 && level < top && (b & ((2 << level) - 1)) == 0; ++a) ++level;
+  }
+}
+
 }  // namespace
 
 RayHit march_accelerated(const World& w, const glm::dvec3& o, const glm::dvec3& d) {
@@ -170,6 +325,15 @@ RayHit march_accelerated(const World& w, const glm::dvec3& o, const glm::dvec3& 
   double t0, t1, t_xy;
   if (!clip_to_grid(w, r, t0, t1, t_xy) || far_ground_first(w, r, t_xy)) {
     return outside_hit(w, r);
+  }
+  RayHit hit;
+  switch (march_fast(w, r, t0, t1, hit)) {
+    case FastResult::Hit:
+      return hit;
+    case FastResult::Miss:
+      return outside_hit(w, r);
+    case FastResult::Undecided:
+      break;
   }
   Traversal tr{w, w.pyramid(), r, {}};
   if (tr.visit(w.pyramid().levels() - 1, 0, 0, t0, t1)) return tr.hit;
