@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   ambisim::cli::add_world_command(app);
   ambisim::cli::add_run_command(app);
   ambisim::cli::add_planners_command(app);
+  ambisim::cli::add_sweep_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

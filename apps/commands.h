@@ -9,5 +9,6 @@ void add_probe_command(CLI::App& app);
 void add_world_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_planners_command(CLI::App& app);
+void add_sweep_command(CLI::App& app);
 
 }  // namespace ambisim::cli

@@ -55,6 +55,7 @@ nlohmann::ordered_json result_json(const Scenario& scenario, const RunIdentity& 
                    {"reference_interval_s", scenario.reference.interval_s},
                    {"document", scenario.document}};
   j["planner"] = {{"name", id.planner}, {"params", id.planner_params}};
+  if (!id.run.is_null()) j["run"] = id.run;
   j["metrics"] = metric_settings_to_json(scenario.metrics);
   j["exposure"] = result.exposure;
   j["summary"] = RunMetrics::to_json(result.summary);

@@ -18,6 +18,7 @@ inline constexpr int kResultFormatVersion = 1;
 struct RunIdentity {
   std::string planner;
   nlohmann::json planner_params;
+  nlohmann::json run = nullptr;  // sweep context (run id, hash, swept values); null for `run`
 };
 
 // The deterministic part of result.json (no timing).

@@ -1,0 +1,408 @@
+#include "sim/sweep.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <future>
+#include <map>
+#include <mutex>
+#include <set>
+#include <thread>
+
+#include "sim/hash.h"
+#include "sim/input_error.h"
+#include "sim/json_reader.h"
+#include "sim/metrics.h"
+#include "sim/reference_track.h"
+#include "sim/run_output.h"
+#include "sim/simulator.h"
+#include "sim/world.h"
+
+namespace ambisim {
+namespace fs = std::filesystem;
+namespace {
+
+std::string number_text(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
+// Multiplies every camera speed of a scenario document.
+void scale_camera_speed(nlohmann::json& doc, double scale) {
+  if (scale == 1.0 || !doc.contains("camera")) return;
+  nlohmann::json& cam = doc["camera"];
+  if (cam.contains("speed_mps") && cam["speed_mps"].is_number()) {
+    cam["speed_mps"] = cam["speed_mps"].get<double>() * scale;
+  }
+  if (cam.contains("speed_profile") && cam["speed_profile"].is_array()) {
+    for (auto& bp : cam["speed_profile"]) {
+      if (bp.contains("speed_mps") && bp["speed_mps"].is_number()) {
+        bp["speed_mps"] = bp["speed_mps"].get<double>() * scale;
+      }
+    }
+  }
+}
+
+std::string csv_escape(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+// Flattens an (ordered) JSON object into dotted keys and CSV texts, in document order.
+void flatten(const nlohmann::ordered_json& j, const std::string& prefix,
+             std::vector<std::pair<std::string, std::string>>& out) {
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const std::string key = prefix.empty() ? it.key() : prefix + "." + it.key();
+    const auto& v = it.value();
+    if (v.is_object()) {
+      flatten(v, key, out);
+    } else if (v.is_null()) {
+      out.emplace_back(key, "nan");
+    } else if (v.is_number_integer()) {
+      out.emplace_back(key, std::to_string(v.get<std::int64_t>()));
+    } else if (v.is_number()) {
+      out.emplace_back(key, format_number(v.get<double>()));
+    } else if (v.is_string()) {
+      out.emplace_back(key, csv_escape(v.get<std::string>()));
+    } else {
+      out.emplace_back(key, csv_escape(v.dump()));
+    }
+  }
+}
+
+std::uint64_t run_hash_of(const Scenario& sc, const SweepPlanner& p) {
+  ContentHasher h;
+  const std::uint64_t sh = sc.hash();
+  h.add_value(sh);
+  h.add_bytes(p.name.data(), p.name.size());
+  const std::string params = p.params.dump();
+  h.add_bytes(params.data(), params.size());
+  return h.value();
+}
+
+nlohmann::json run_json(const RunSpec& r) {
+  return {{"id", r.id},
+          {"index", r.index},
+          {"hash", hex64(r.run_hash)},
+          {"label", r.planner.label},
+          {"faces_per_frame", r.budget},
+          {"speed_scale", r.speed_scale},
+          {"fps", r.fps},
+          {"seed", r.seed}};
+}
+
+std::optional<nlohmann::ordered_json> read_result(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  try {
+    return nlohmann::ordered_json::parse(in);
+  } catch (const nlohmann::json::exception&) {
+    return std::nullopt;
+  }
+}
+
+}  // namespace
+
+SweepSpec load_sweep(const std::string& path) {
+  const nlohmann::json doc = load_json_file(path);
+  ObjectReader r(doc, path, "");
+  SweepSpec s;
+  s.file = path;
+  s.name = r.string("name", fs::path(path).stem().string());
+  const fs::path base = fs::path(path).parent_path();
+  const nlohmann::json* scen = r.raw("scenarios");
+  if (scen == nullptr) r.fail("scenarios", "required list of scenario files is missing");
+  if (!scen->is_array() || scen->empty()) r.fail("scenarios", "must be a non-empty array of paths");
+  for (std::size_t i = 0; i < scen->size(); ++i) {
+    const auto& e = (*scen)[i];
+    if (!e.is_string()) {
+      throw InputError(path, "/scenarios/" + std::to_string(i), "must be a file path string");
+    }
+    const fs::path p = base / e.get<std::string>();
+    if (!fs::is_regular_file(p)) {
+      throw InputError(path, "/scenarios/" + std::to_string(i), "no such file: " + p.string());
+    }
+    s.scenarios.push_back(p.lexically_normal().string());
+  }
+  const nlohmann::json* planners = r.raw("planners");
+  if (planners == nullptr) r.fail("planners", "required list of planners is missing");
+  if (!planners->is_array() || planners->empty()) r.fail("planners", "must be a non-empty array");
+  std::set<std::string> labels;
+  for (std::size_t i = 0; i < planners->size(); ++i) {
+    const std::string at = "/planners/" + std::to_string(i);
+    SweepPlanner p;
+    const auto& e = (*planners)[i];
+    if (e.is_string()) {
+      p.name = e.get<std::string>();
+      p.params = nlohmann::json::object();
+    } else {
+      ObjectReader pr(e, path, at);
+      p.name = pr.string("name");
+      p.label = pr.string("label", "");
+      const nlohmann::json* params = pr.raw("params");
+      p.params = params ? *params : nlohmann::json::object();
+      if (!p.params.is_object()) throw InputError(path, at + "/params", "must be an object");
+      pr.finish();
+    }
+    if (p.label.empty()) p.label = p.name;
+    p.params_pointer = at + "/params";
+    if (!labels.insert(p.label).second) {
+      throw InputError(path, at, "duplicate planner label \"" + p.label + "\" (add \"label\")");
+    }
+    s.planners.push_back(std::move(p));
+  }
+  if (r.has("budgets")) s.budgets = r.numbers("budgets", Range::closed(0.0, 96.0));
+  if (r.has("speed_scales")) s.speed_scales = r.numbers("speed_scales", Range::closed(0.0, 100.0));
+  if (r.has("fps")) s.fps = r.numbers("fps", {0.0, 10000.0, true, false});
+  if (r.has("seeds")) {
+    for (double x : r.numbers("seeds", Range::closed(0.0, 9.0e15))) {
+      if (x != std::floor(x)) r.fail("seeds", "seeds must be whole numbers");
+      s.seeds.push_back(static_cast<std::uint64_t>(x));
+    }
+  }
+  if (r.has("duration_s")) s.duration_s = r.number("duration_s", {0.0, 86400.0, true, false});
+  if (const nlohmann::json* o = r.raw("overrides")) {
+    if (!o->is_object()) r.fail("overrides", "must be an object of JSON pointer -> value");
+    s.overrides = *o;
+  }
+  for (const char* k : {"budgets", "speed_scales", "fps", "seeds"}) {
+    if (r.has(k) && doc[k].empty()) r.fail(k, "must not be empty");
+  }
+  r.finish();
+  return s;
+}
+
+std::vector<RunSpec> expand_sweep(const SweepSpec& spec) {
+  std::vector<RunSpec> runs;
+  const std::vector<double> fps = spec.fps.empty() ? std::vector<double>{0.0} : spec.fps;
+  const std::vector<std::uint64_t> seeds =
+      spec.seeds.empty() ? std::vector<std::uint64_t>{0} : spec.seeds;
+  for (const auto& file : spec.scenarios) {
+    const nlohmann::json base = load_json_file(file);
+    for (double f : fps) {
+      for (double v : spec.speed_scales) {
+        for (std::uint64_t seed : seeds) {
+          nlohmann::json doc = base;
+          for (const auto& [pointer, value] : spec.overrides.items()) {
+            set_json_path(doc, pointer, value, spec.file);
+          }
+          if (spec.duration_s) set_json_path(doc, "/frames/duration_s", *spec.duration_s, file);
+          if (f > 0.0) {
+            if (doc.contains("frames") && doc["frames"].is_object())
+              doc["frames"].erase("segments");
+            set_json_path(doc, "/frames/fps", f, file);
+          }
+          if (seed != 0) set_json_path(doc, "/receivers/seed", seed, file);
+          scale_camera_speed(doc, v);
+          for (double b : spec.budgets) {
+            set_json_path(doc, "/budget/faces_per_frame", b, file);
+            const Scenario variant = parse_scenario(doc, file);
+            for (const auto& p : spec.planners) {
+              RunSpec r;
+              r.index = runs.size();
+              r.scenario = variant;
+              r.planner = p;
+              r.budget = b;
+              r.speed_scale = v;
+              r.fps = f;
+              r.seed = seed;
+              r.id = variant.name + "__" + p.label + "__b" + number_text(b) + "__v" +
+                     number_text(v) + (f > 0.0 ? "__f" + number_text(f) : std::string()) +
+                     (seed != 0 ? "__s" + std::to_string(seed) : std::string());
+              r.run_hash = run_hash_of(variant, p);
+              runs.push_back(std::move(r));
+            }
+          }
+        }
+      }
+    }
+  }
+  std::set<std::string> ids;
+  for (const auto& r : runs) {
+    if (!ids.insert(r.id).second) {
+      throw InputError(
+          spec.file, "",
+          "two runs would share the id " + r.id + " (same scenario name listed twice?)");
+    }
+  }
+  return runs;
+}
+
+SweepReport run_sweep(const SweepSpec& spec, const std::string& out_dir,
+                      const PlannerFactory& factory, const SweepOptions& options) {
+  const std::vector<RunSpec> all = expand_sweep(spec);
+  // Validate every planner before any work, so a typo fails in a second, not an hour in.
+  for (const auto& p : spec.planners) factory(p);
+
+  std::vector<const RunSpec*> mine;
+  for (const auto& r : all) {
+    if (static_cast<int>(r.index % static_cast<std::size_t>(options.shard_count)) ==
+        options.shard_index) {
+      mine.push_back(&r);
+    }
+  }
+  const fs::path runs_dir = fs::path(out_dir) / "runs";
+  std::error_code ec;
+  fs::create_directories(runs_dir, ec);
+  if (ec) throw InputError(out_dir, "", "cannot create output directory: " + ec.message());
+
+  SweepReport report;
+  report.total = mine.size();
+  std::vector<const RunSpec*> todo;
+  for (const RunSpec* r : mine) {
+    const fs::path result = runs_dir / r->id / "result.json";
+    if (fs::exists(result)) {
+      if (options.resume) {
+        const auto j = read_result(result);
+        if (j && j->contains("run") && (*j)["run"].value("hash", "") == hex64(r->run_hash)) {
+          ++report.skipped;
+          continue;
+        }
+      } else if (!options.force) {
+        throw InputError(result.string(), "",
+                         "already exists (use --resume to keep finished runs or --force)");
+      }
+    }
+    todo.push_back(r);
+  }
+
+  // Shared inputs: one World per world description, one reference per scenario variant.
+  std::mutex mutex;
+  std::map<std::string, std::shared_future<std::shared_ptr<const World>>> worlds;
+  std::map<std::uint64_t, std::shared_future<std::shared_ptr<const ReferenceTrack>>> references;
+  auto world_for = [&](const Scenario& sc) {
+    const std::string key = sc.document.value("world", nlohmann::json::object()).dump();
+    std::promise<std::shared_ptr<const World>> promise;
+    std::shared_future<std::shared_ptr<const World>> future;
+    bool mine_to_build = false;
+    {
+      std::lock_guard lock(mutex);
+      auto it = worlds.find(key);
+      if (it == worlds.end()) {
+        future = promise.get_future().share();
+        worlds.emplace(key, future);
+        mine_to_build = true;
+      } else {
+        future = it->second;
+      }
+    }
+    if (mine_to_build) promise.set_value(std::make_shared<const World>(sc.world));
+    return future.get();
+  };
+  auto reference_for = [&](const Scenario& sc, const World& world) {
+    std::promise<std::shared_ptr<const ReferenceTrack>> promise;
+    std::shared_future<std::shared_ptr<const ReferenceTrack>> future;
+    bool mine_to_build = false;
+    {
+      std::lock_guard lock(mutex);
+      auto it = references.find(sc.reference_hash());
+      if (it == references.end()) {
+        future = promise.get_future().share();
+        references.emplace(sc.reference_hash(), future);
+        mine_to_build = true;
+      } else {
+        future = it->second;
+      }
+    }
+    if (mine_to_build) promise.set_value(compute_reference_track(sc, world));
+    return future.get();
+  };
+
+  // Runs of one reference are spread so that workers start on different references first.
+  std::atomic<std::size_t> next{0};
+  std::size_t done = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  std::exception_ptr failure;
+  auto worker = [&] {
+    while (true) {
+      if (options.stop && options.stop->load()) return;
+      {
+        std::lock_guard lock(mutex);
+        if (failure) return;
+      }
+      const std::size_t k = next.fetch_add(1);
+      if (k >= todo.size()) return;
+      const RunSpec& r = *todo[k];
+      try {
+        const auto world = world_for(r.scenario);
+        const auto reference = reference_for(r.scenario, *world);
+        auto planner = factory(r.planner);
+        const RunResult result = simulate(r.scenario, *world, *reference, *planner);
+        write_run_output((runs_dir / r.id).string(), r.scenario,
+                         {planner->name(), planner->params(), run_json(r)}, result,
+                         Overwrite::allow);
+      } catch (...) {
+        std::lock_guard lock(mutex);
+        if (!failure) failure = std::current_exception();
+        return;
+      }
+      std::lock_guard lock(mutex);
+      ++done;
+      ++report.executed;
+      if (options.progress) {
+        const double elapsed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        const double eta =
+            elapsed / static_cast<double>(done) * static_cast<double>(todo.size() - done);
+        options.progress(done + report.skipped, report.total, eta, r.id);
+      }
+    }
+  };
+  const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(todo.size())));
+  std::vector<std::thread> threads;
+  for (int j = 1; j < jobs; ++j) threads.emplace_back(worker);
+  worker();
+  for (auto& t : threads) t.join();
+  if (failure) std::rethrow_exception(failure);
+  report.interrupted =
+      options.stop && options.stop->load() && report.executed + report.skipped < report.total;
+
+  // summary.csv and timing.csv from every finished run of the whole sweep, in sweep order.
+  std::string summary, timing;
+  std::vector<std::string> summary_header, timing_header;
+  for (const auto& r : all) {
+    const auto j = read_result(runs_dir / r.id / "result.json");
+    if (!j || !j->contains("run") || (*j)["run"].value("hash", "") != hex64(r.run_hash)) continue;
+    std::vector<std::pair<std::string, std::string>> cols = {
+        {"run", r.id},
+        {"scenario", r.scenario.name},
+        {"planner", r.planner.name},
+        {"label", r.planner.label},
+        {"params", csv_escape((*j)["planner"]["params"].dump())},
+        {"faces_per_frame", format_number(r.budget)},
+        {"speed_scale", format_number(r.speed_scale)},
+        {"fps", format_number(r.fps)},
+        {"seed", std::to_string(r.seed)},
+        {"scenario_hash", (*j)["scenario"].value("hash", "")}};
+    flatten((*j)["summary"], "", cols);
+    if (summary_header.empty()) {
+      for (const auto& c : cols) summary_header.push_back(c.first);
+      for (std::size_t i = 0; i < summary_header.size(); ++i) {
+        summary += (i ? "," : "") + summary_header[i];
+      }
+      summary += "\n";
+    }
+    for (std::size_t i = 0; i < cols.size(); ++i) summary += (i ? "," : "") + cols[i].second;
+    summary += "\n";
+    std::vector<std::pair<std::string, std::string>> tcols = {{"run", r.id}};
+    if (j->contains("timing")) flatten((*j)["timing"], "timing", tcols);
+    if (timing_header.empty()) {
+      for (std::size_t i = 0; i < tcols.size(); ++i) timing += (i ? "," : "") + tcols[i].first;
+      timing += "\n";
+    }
+    for (std::size_t i = 0; i < tcols.size(); ++i) timing += (i ? "," : "") + tcols[i].second;
+    timing += "\n";
+  }
+  write_text_atomically((fs::path(out_dir) / "summary.csv").string(), summary, Overwrite::allow);
+  write_text_atomically((fs::path(out_dir) / "timing.csv").string(),
+                        "# measured wall-clock times: not deterministic, not results\n" + timing,
+                        Overwrite::allow);
+  return report;
+}
+
+}  // namespace ambisim
