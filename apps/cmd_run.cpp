@@ -38,6 +38,7 @@ void run_run(const RunOptions& o) {
   if (fs::exists(o.out)) {
     check_output_path((fs::path(o.out) / "result.json").string(), ow);
     check_output_path((fs::path(o.out) / "frames.csv").string(), ow);
+    check_output_path((fs::path(o.out) / "views.json").string(), ow);
   }
 
   const World world(scenario.world);

@@ -179,4 +179,21 @@ PlannerStats NearestProbePlanner::stats() const {
   return s;
 }
 
+void NearestProbePlanner::describe_nodes(std::vector<ProbeNodeView>& out) const {
+  for (const auto& q : probes_) {
+    ProbeNodeView v;
+    v.centre = q.position;
+    v.has_data = true;
+    v.age_s = now_ - q.data_time;
+    v.sh = q.sh;
+    out.push_back(v);
+  }
+  for (const auto& [tag, f] : in_flight_) {
+    ProbeNodeView v;
+    v.centre = f.position;
+    v.in_flight = true;
+    out.push_back(v);
+  }
+}
+
 }  // namespace ambisim

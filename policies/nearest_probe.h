@@ -36,6 +36,7 @@ class NearestProbePlanner final : public Planner {
   // it fades from, weighted 1 - t).
   LookupResult lookup(const glm::dvec3& p) const override;
   PlannerStats stats() const override;
+  void describe_nodes(std::vector<ProbeNodeView>& out) const override;
 
  private:
   struct Probe {

@@ -64,6 +64,44 @@ nlohmann::ordered_json result_json(const Scenario& scenario, const RunIdentity& 
   return j;
 }
 
+std::string views_json(const RunResult& result) {
+  // Compact arrays: what `ambisim viz` needs to draw the run, nothing it could recompute.
+  auto vec = [](const glm::dvec3& p) { return nlohmann::json::array({p.x, p.y, p.z}); };
+  nlohmann::ordered_json j;
+  j["format"] = "ambisim-views";
+  j["format_version"] = kResultFormatVersion;
+  j["exposure"] = result.exposure;
+  nlohmann::json path = nlohmann::json::array();
+  for (const auto& p : result.camera_path) path.push_back(vec(p));
+  j["camera_path"] = std::move(path);
+  nlohmann::json snaps = nlohmann::json::array();
+  for (const auto& s : result.snapshots) {
+    nlohmann::json o;
+    o["frame"] = s.frame;
+    o["time"] = s.time;
+    o["camera"] = vec(s.camera);
+    nlohmann::json nodes = nlohmann::json::array();
+    for (const auto& n : s.nodes) {
+      nlohmann::json sh = nlohmann::json::array();
+      for (const auto& c : n.sh.c) sh.push_back({c.x, c.y, c.z});
+      nodes.push_back({{"c", vec(n.centre)},
+                       {"h", vec(n.half_extent)},
+                       {"depth", n.depth},
+                       {"data", n.has_data},
+                       {"flight", n.in_flight},
+                       {"age", n.age_s},
+                       {"sh", std::move(sh)}});
+    }
+    o["nodes"] = std::move(nodes);
+    nlohmann::json rec = nlohmann::json::array();
+    for (const auto& p : s.receivers) rec.push_back(vec(p));
+    o["receivers"] = std::move(rec);
+    snaps.push_back(std::move(o));
+  }
+  j["snapshots"] = std::move(snaps);
+  return j.dump() + "\n";
+}
+
 std::string frames_csv(const RunResult& result) {
   std::string out = frame_csv_header() + "\n";
   for (const auto& f : result.frames) out += frame_csv_row(f) + "\n";
@@ -81,9 +119,12 @@ void write_run_output(const std::string& dir, const Scenario& scenario, const Ru
   // Check both before writing either, so a refusal leaves nothing half-written.
   check_output_path(result_path, overwrite);
   check_output_path(frames_path, overwrite);
+  const std::string views_path = (fs::path(dir) / "views.json").string();
+  check_output_path(views_path, overwrite);
   nlohmann::ordered_json j = result_json(scenario, id, result);
   j["timing"] = result.timing.to_json();
   write_text_atomically(frames_path, frames_csv(result), overwrite);
+  write_text_atomically(views_path, views_json(result), overwrite);
   write_text_atomically(result_path, j.dump(1) + "\n", overwrite);
 }
 

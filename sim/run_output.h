@@ -25,12 +25,15 @@ struct RunIdentity {
 nlohmann::ordered_json result_json(const Scenario& scenario, const RunIdentity& id,
                                    const RunResult& result);
 
-// Writes DIR/result.json (with the timing section appended) and DIR/frames.csv, creating DIR
+// Writes DIR/result.json (with the timing section appended), DIR/frames.csv and DIR/views.json,
+// creating DIR
 // if needed. Refuses to overwrite either file unless overwrite is allow; files are written
 // atomically, so an interrupted run leaves no partial result.
 void write_run_output(const std::string& dir, const Scenario& scenario, const RunIdentity& id,
                       const RunResult& result, Overwrite overwrite);
 
 std::string frames_csv(const RunResult& result);
+// DIR/views.json: camera path and snapshots of the planner's nodes and the receivers.
+std::string views_json(const RunResult& result);
 
 }  // namespace ambisim

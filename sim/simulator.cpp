@@ -223,6 +223,18 @@ RunResult simulate(const Scenario& scenario, const World& world, const Reference
     for (const auto& p : finished) planner.deliver(p);
     result.timing.planner_s += seconds_since(t0);
 
+    if (options.keep_frames) result.camera_path.push_back(mf.camera.position);
+    if (options.snapshot_every_s > 0.0 &&
+        (result.snapshots.empty() ||
+         mf.frame.time >= result.snapshots.back().time + options.snapshot_every_s - 1e-9)) {
+      Snapshot snap;
+      snap.frame = mf.frame.index;
+      snap.time = mf.frame.time;
+      snap.camera = mf.camera.position;
+      planner.describe_nodes(snap.nodes);
+      for (const auto& r : motion.receivers()) snap.receivers.push_back(r.position);
+      result.snapshots.push_back(std::move(snap));
+    }
     FrameRow row = metrics.end_frame();
     if (options.keep_frames) result.frames.push_back(row);
     ++frame_index;

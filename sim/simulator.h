@@ -41,6 +41,16 @@ struct RunTiming {
   nlohmann::ordered_json to_json() const;
 };
 
+// The state of a run at one moment, for the VTK views: the planner's nodes, the camera and the
+// receivers (with the planner's and the reference's irradiance straight up, for colouring).
+struct Snapshot {
+  std::int64_t frame = 0;
+  double time = 0.0;
+  glm::dvec3 camera{0.0};
+  std::vector<ProbeNodeView> nodes;
+  std::vector<glm::dvec3> receivers;
+};
+
 struct RunResult {
   Summary summary;
   std::vector<FrameRow> frames;
@@ -48,10 +58,13 @@ struct RunResult {
   std::int64_t captures_started = 0;
   std::int64_t captures_delivered = 0;
   double exposure = 0.0;
+  std::vector<glm::dvec3> camera_path;  // camera position per frame
+  std::vector<Snapshot> snapshots;
 };
 
 struct SimulationOptions {
-  bool keep_frames = true;  // keep the per-frame series
+  bool keep_frames = true;        // keep the per-frame series
+  double snapshot_every_s = 1.0;  // record a Snapshot this often (0: never)
 };
 
 RunResult simulate(const Scenario& scenario, const World& world, const ReferenceTrack& reference,
