@@ -5,7 +5,12 @@
 
 #include "policies/constant_ambient.h"
 #include "policies/nearest_probe.h"
+#include "policies/octree.h"
 #include "policies/oracle.h"
+#include "policies/per_object.h"
+#include "policies/scrolling_grid.h"
+#include "policies/shgraph.h"
+#include "policies/shgraph2d.h"
 #include "sim/input_error.h"
 
 namespace ambisim {
@@ -18,6 +23,14 @@ const std::vector<PlannerInfo>& planner_catalogue() {
       ConstantAmbientPlanner::constant_info(),
       ConstantAmbientPlanner::hemisphere_info(),
       NearestProbePlanner::info(),
+      PerObjectPlanner::info(),
+      ScrollingGridPlanner::info(),
+      OctreePlanner::info(),
+      OctreePlanner::vp_info(),
+      ShGraphPlanner::info(),
+      ShGraphPlanner::info_vp(),
+      ShGraphPlanner::info_route(),
+      ShGraph2dPlanner::info(),
   };
   return catalogue;
 }

@@ -30,9 +30,13 @@ struct Sample {
 
 }  // namespace
 
-const Sh9Rgb* ReferenceTrack::find_sh(const glm::dvec3& p) const {
-  auto it = sh_by_position.find(key_of(p));
-  return it == sh_by_position.end() ? nullptr : &it->second;
+std::ptrdiff_t ReferenceTrack::find_slot(std::size_t frame, const glm::dvec3& p) const {
+  if (frame >= frames.size()) return -1;
+  const FrameSpan& span = frames[frame];
+  for (std::size_t k = span.begin; k < span.begin + span.count; ++k) {
+    if (positions[k] == p) return static_cast<std::ptrdiff_t>(k);
+  }
+  return -1;
 }
 
 std::shared_ptr<const ReferenceTrack> compute_reference_track(const Scenario& scenario,
@@ -50,31 +54,38 @@ std::shared_ptr<const ReferenceTrack> compute_reference_track(const Scenario& sc
       for (const auto& r : motion.receivers()) {
         by_receiver[r.id].push_back({r.position, motion.current().frame.time, track->ids.size()});
         track->ids.push_back(r.id);
+        track->positions.push_back(r.position);
       }
       track->frames.push_back(span);
     }
   }
   track->irradiance.assign(track->ids.size() * nn, Rgb(0.0f));
+  track->sh.assign(track->ids.size(), Sh9Rgb{});
 
   // Pass 2: captures at key samples (cached by exact position), interpolation in between.
   const IrradianceIntegrator integrator(scenario.reference.face_size, track->normals);
   const ShProjector& projector = projector_for(scenario.reference.face_size);
   track->face_size = scenario.reference.face_size;
-  std::map<PositionKey, std::vector<Rgb>> cache;
-  auto reference_at = [&](const glm::dvec3& p) -> const std::vector<Rgb>& {
+  struct Captured {
+    std::vector<Rgb> irradiance;
+    Sh9Rgb sh;
+  };
+  std::map<PositionKey, Captured> cache;
+  auto reference_at = [&](const glm::dvec3& p) -> const Captured& {
     auto [it, inserted] = cache.try_emplace(key_of(p));
     if (inserted) {
       const CubeMap cube = capture(world, p, scenario.reference.face_size);
-      it->second = integrator.integrate(cube);
-      track->sh_by_position[key_of(p)] = projector.project(cube);
+      it->second.irradiance = integrator.integrate(cube);
+      it->second.sh = projector.project(cube);
       ++track->captures;
     }
     return it->second;
   };
   const double interval = scenario.reference.interval_s;
   auto store = [&](const Sample& smp) {
-    const std::vector<Rgb>& v = reference_at(smp.position);
-    std::copy(v.begin(), v.end(), track->irradiance.begin() + smp.slot * nn);
+    const Captured& c = reference_at(smp.position);
+    std::copy(c.irradiance.begin(), c.irradiance.end(), track->irradiance.begin() + smp.slot * nn);
+    track->sh[smp.slot] = c.sh;
   };
   // Phase 1: key samples of every receiver: all of them, or the first in each time bucket
   // plus the last one.
@@ -153,6 +164,8 @@ std::shared_ptr<const ReferenceTrack> compute_reference_track(const Scenario& sc
           const Rgb& e1 = track->irradiance[s1.slot * nn + m];
           track->irradiance[samples[k].slot * nn + m] = e0 + static_cast<float>(f) * (e1 - e0);
         }
+        track->sh[samples[k].slot] =
+            sh_lerp(track->sh[s0.slot], track->sh[s1.slot], static_cast<float>(f));
         ++track->slots_interpolated;
       }
     }

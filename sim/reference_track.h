@@ -40,12 +40,15 @@ struct ReferenceTrack {
 
   const Rgb* values(std::size_t slot) const { return &irradiance[slot * normals.size()]; }
 
-  // Memo of every reference capture, projected to SH9, by exact position (bit pattern). A
-  // capture at the same position and resolution is the same cube, so the oracle, which
-  // captures at the reference resolution, reuses these instead of rendering them again.
+  // The reference capture of each slot projected to SH9 (interpolated in time like the
+  // irradiance between captured slots): the best the SH9 representation can do at that
+  // receiver. The oracle is served from these, so it is the representation's ceiling against
+  // exactly this reference, at no extra rendering cost.
   int face_size = 0;
-  std::map<std::array<std::uint64_t, 3>, Sh9Rgb> sh_by_position;
-  const Sh9Rgb* find_sh(const glm::dvec3& p) const;
+  std::vector<Sh9Rgb> sh;
+  std::vector<glm::dvec3> positions;  // receiver position per slot
+  // The slot of a receiver of frame `frame` at exactly position p, or -1.
+  std::ptrdiff_t find_slot(std::size_t frame, const glm::dvec3& p) const;
 };
 
 // Runs the scenario's motion (no planner) and computes the track. Single-threaded and

@@ -71,13 +71,14 @@ RunResult simulate(const Scenario& scenario, const World& world, const Reference
   std::vector<Rgb> planner_e(nn);
   std::size_t frame_index = 0;
 
-  // The oracle captures at the reference's resolution, so its only error is the SH9
-  // representation itself; those captures are memoised by the reference pass.
+  // The oracle (a planner that ignores the budget) is served the reference's own SH9 at a
+  // receiver: the representation's ceiling against exactly this reference. A request that is
+  // not at a receiver is rendered at the reference's resolution.
   const int oracle_face_size = reference.face_size > 0 ? reference.face_size : face_size;
-  auto render_all_faces = [&](InFlight& c) {
+  auto render_all_faces = [&](InFlight& c, std::size_t frame) {
     const auto t0 = Clock::now();
-    c.memo =
-        reference.face_size == oracle_face_size ? reference.find_sh(c.request.position) : nullptr;
+    const std::ptrdiff_t slot = reference.find_slot(frame, c.request.position);
+    c.memo = slot >= 0 ? &reference.sh[static_cast<std::size_t>(slot)] : nullptr;
     if (c.memo == nullptr) {
       if (c.cube.size != oracle_face_size) c.cube = CubeMap(oracle_face_size);
       for (int f = 0; f < kCubeFaces; ++f) {
@@ -158,7 +159,7 @@ RunResult simulate(const Scenario& scenario, const World& world, const Reference
     for (const auto& c : in_flight) needed += kCubeFaces - c.faces_done;
     costs.faces_requested = needed;
     if (unlimited) {
-      for (auto& c : in_flight) render_all_faces(c);
+      for (auto& c : in_flight) render_all_faces(c, frame_index);
       costs.faces_granted = needed;
     } else {
       int grant = budget.grant(static_cast<int>(std::min<std::int64_t>(needed, 1 << 30)));

@@ -392,6 +392,7 @@ SweepReport run_sweep(const SweepSpec& spec, const std::string& out_dir,
     std::vector<std::pair<std::string, std::string>> tcols = {{"run", r.id}};
     if (j->contains("timing")) flatten((*j)["timing"], "timing", tcols);
     if (timing_header.empty()) {
+      for (const auto& c : tcols) timing_header.push_back(c.first);
       for (std::size_t i = 0; i < tcols.size(); ++i) timing += (i ? "," : "") + tcols[i].first;
       timing += "\n";
     }
