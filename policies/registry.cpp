@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "policies/constant_ambient.h"
+#include "policies/demand_planner.h"
 #include "policies/nearest_probe.h"
 #include "policies/octree.h"
 #include "policies/oracle.h"
@@ -31,6 +32,7 @@ const std::vector<PlannerInfo>& planner_catalogue() {
       ShGraphPlanner::info_vp(),
       ShGraphPlanner::info_route(),
       ShGraph2dPlanner::info(),
+      DemandPlanner::info(),
   };
   return catalogue;
 }

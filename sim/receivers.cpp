@@ -151,6 +151,10 @@ void ReceiverSet::update(double time, const CameraState& camera) {
   last_time_ = time;
 }
 
+double ReceiverSet::stand_height(double x, double y) const {
+  return terrain_.surface_height ? terrain_.surface_height(x, y) : terrain_.ground_height(x, y);
+}
+
 void ReceiverSet::update_camera_object(double time, const CameraState& camera) {
   if (live_.empty() || live_.front().id != 0) {
     spawn(ReceiverKind::camera_object, time);
@@ -158,13 +162,15 @@ void ReceiverSet::update_camera_object(double time, const CameraState& camera) {
   }
   Receiver& r = live_.front();
   const glm::dvec3 p = horizontal(camera.position) + rec_.camera_object.ahead_m * heading_;
-  const double ground = terrain_.ground_height(p.x, p.y);
+  // Objects stand on whatever is solid: in a forest that is the canopy top (the world has no
+  // space under the trees; a point inside the canopy would be inside a solid column).
+  const double ground = stand_height(p.x, p.y);
   r.position = {p.x, p.y, ground + rec_.camera_object.height_m};
   // Vertical speed follows the ground slope along the heading (central difference, +-0.5 m).
   const glm::dvec3 vh = horizontal(camera.velocity);
   const glm::dvec3 a = p - 0.5 * heading_;
   const glm::dvec3 b = p + 0.5 * heading_;
-  const double slope = terrain_.ground_height(b.x, b.y) - terrain_.ground_height(a.x, a.y);
+  const double slope = stand_height(b.x, b.y) - stand_height(a.x, a.y);
   r.velocity = {vh.x, vh.y, slope * glm::dot(vh, heading_)};
 }
 
@@ -206,7 +212,7 @@ void ReceiverSet::update_lod_props(double time, const CameraState& camera) {
     const glm::dvec3 p = cam + d * heading_ + w * right;
     const double h = L.min_height_m + uniform(kLodStream, n, 2) * (L.max_height_m - L.min_height_m);
     Receiver& r = spawn(ReceiverKind::lod_prop, time);
-    r.position = {p.x, p.y, terrain_.ground_height(p.x, p.y) + h};
+    r.position = {p.x, p.y, stand_height(p.x, p.y) + h};
     r.velocity = glm::dvec3(0.0);
     r.despawn_time = time + L.lifetime_s;
     ++live_props;

@@ -102,6 +102,7 @@ class ReceiverSet {
 
  private:
   void update_camera_object(double time, const CameraState& camera);
+  double stand_height(double x, double y) const;
   void update_lod_props(double time, const CameraState& camera);
   void update_traffic(double time, const CameraState& camera);
   Receiver& spawn(ReceiverKind kind, double time);

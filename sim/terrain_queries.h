@@ -12,6 +12,8 @@ namespace ambisim {
 
 struct TerrainQueries {
   std::function<double(double, double)> ground_height;  // terrain without canopy (m), at (x, y)
+  // Top of whatever is solid (terrain or forest canopy); receivers stand on it. Unset: ground.
+  std::function<double(double, double)> surface_height;
   const Spline3* road = nullptr;  // road centre line at road-surface height, world coords
   double road_width = 0.0;        // full width of both carriageways (m)
 };

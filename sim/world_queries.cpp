@@ -5,6 +5,7 @@ namespace ambisim {
 TerrainQueries terrain_queries(const World& world) {
   TerrainQueries q;
   q.ground_height = [&world](double x, double y) { return world.ground_height(x, y); };
+  q.surface_height = [&world](double x, double y) { return world.surface_height(x, y); };
   q.road = world.road().empty() ? nullptr : &world.road();
   q.road_width = world.road_width_m();
   return q;
