@@ -13,8 +13,8 @@
 namespace ambisim::cli {
 namespace {
 
-// Until ambisim's own planner exists, runs without --planner use the nearest-probe baseline.
-constexpr const char* kDefaultPlanner = "nearest";
+// Runs without --planner use ambisim's own planner.
+constexpr const char* kDefaultPlanner = "ambisim";
 
 struct RunOptions {
   std::string scenario;

@@ -85,9 +85,27 @@ glm::dvec3 Spline3::tangent(double s) const {
 }
 
 double Spline3::closest_s(const glm::dvec3& p) const {
+  // Coarse pass over every kStride-th table sample, then an exact pass over the polyline
+  // segments around the best coarse sample: O(n / kStride) instead of O(n). Exact for curves
+  // whose bends are gentle at the table's scale (roads, camera paths); a hairpin tighter
+  // than kStride samples could return a local minimum.
+  constexpr std::size_t kStride = 16;
+  const std::size_t n = table_s_.size();
+  std::size_t best_k = 0;
+  double best_c = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < n; k += kStride) {
+    const glm::dvec3 q = eval(table_t_[k]);
+    const double d2 = glm::dot(p - q, p - q);
+    if (d2 < best_c) {
+      best_c = d2;
+      best_k = k;
+    }
+  }
+  const std::size_t lo = best_k > kStride ? best_k - kStride : 0;
+  const std::size_t hi = std::min(n - 1, best_k + kStride);
   double best_s = 0.0;
   double best_d2 = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k + 1 < table_s_.size(); ++k) {
+  for (std::size_t k = lo; k < hi; ++k) {
     const glm::dvec3 a = eval(table_t_[k]);
     const glm::dvec3 b = eval(table_t_[k + 1]);
     const glm::dvec3 ab = b - a;
