@@ -10,5 +10,7 @@ void add_world_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_planners_command(CLI::App& app);
 void add_sweep_command(CLI::App& app);
+void add_plot_command(CLI::App& app);
+void add_viz_command(CLI::App& app);
 
 }  // namespace ambisim::cli

@@ -1,0 +1,146 @@
+// `ambisim plot` on a small synthetic sweep directory: the chart set per scenario, images that
+// show something, errors naming the file, no silent overwrite.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+#include "sim/input_error.h"
+#include "viz/charts.h"
+#include "viz/csv_table.h"
+#include "viz/png_writer.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+std::size_t distinct_colours(const ambisim::ImageRgb8& img) {
+  std::set<std::uint32_t> c;
+  for (std::size_t i = 0; i + 2 < img.rgb.size(); i += 3) {
+    c.insert((std::uint32_t(img.rgb[i]) << 16) | (std::uint32_t(img.rgb[i + 1]) << 8) |
+             img.rgb[i + 2]);
+  }
+  return c.size();
+}
+
+// Two planners x three budgets x two speeds on one scenario; one result.json with a series.
+fs::path make_sweep_dir() {
+  const auto dir = fs::temp_directory_path() / "ambisim_test_charts";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "runs");
+  std::ofstream s(dir / "summary.csv");
+  std::ofstream t(dir / "timing.csv");
+  s << "run,scenario,planner,label,params,faces_per_frame,speed_scale,fps,seed,scenario_hash,"
+       "frames,duration_s,error.de2000.mean,error.de2000.p95,pops.per_min,coverage.mean\n";
+  t << "# measured wall-clock times\n";
+  const char* timing_header = "run,timing.note,timing.total_s,timing.planner_us_per_frame\n";
+  bool first = true;
+  for (const char* planner : {"nearest", "grid"}) {
+    for (double budget : {0.5, 1.0, 2.0}) {
+      for (double speed : {1.0, 2.0}) {
+        const bool grid = planner[0] == 'g';
+        const std::string run = std::string("demo__") + planner + "__b" + std::to_string(budget) +
+                                "__v" + std::to_string(static_cast<int>(speed));
+        const double p95 = (grid ? 6.0 : 9.0) / budget * speed;
+        s << run << ",demo," << planner << "," << planner << ",\"{\"\"spacing_m\"\":8}\"," << budget
+          << "," << speed << ",0,0,abc,120,2," << p95 / 3 << "," << p95 << ","
+          << 10 * speed / budget << "," << (grid ? 0.5 : 0.3) * budget / 2 << "\n";
+        t << timing_header << run << ",\"measured, not results\",0.01,"
+          << (grid ? 3.0 : 0.5) * budget << "\n";
+        if (first) {
+          first = false;
+          fs::create_directories(dir / "runs" / run);
+          json series = {{"time", json::array()},        {"de2000_mean", json::array()},
+                         {"de2000_max", json::array()},  {"pops", json::array()},
+                         {"live_probes", json::array()}, {"receivers", json::array()},
+                         {"coverage", json::array()}};
+          for (int f = 0; f < 120; ++f) {
+            series["time"].push_back(f / 60.0);
+            series["de2000_mean"].push_back(2.0 + std::sin(f * 0.1));
+            series["de2000_max"].push_back(f == 0 ? json(nullptr) : json(5.0 + std::sin(f * 0.07)));
+            series["pops"].push_back(f % 40 == 7 ? 1 : 0);
+            series["live_probes"].push_back(f / 10);
+            series["receivers"].push_back(3);
+            series["coverage"].push_back(0.01 * (f % 50));
+          }
+          json result = {
+              {"format", "ambisim-run"},
+              {"scenario",
+               {{"name", "demo"}, {"document", {{"camera", {{"speed_mps", 20.0 * speed}}}}}}},
+              {"series", series}};
+          std::ofstream(dir / "runs" / run / "result.json") << result.dump();
+        }
+      }
+    }
+  }
+  return dir;
+}
+
+}  // namespace
+
+TEST_CASE("csv reader handles quotes, comments and repeated headers", "[viz][charts]") {
+  const auto f = ambisim::split_csv_line(R"(a,"b,""c""",,d)");
+  REQUIRE(f.size() == 4);
+  CHECK(f[1] == "b,\"c\"");
+  CHECK(f[2].empty());
+  const auto dir = make_sweep_dir();
+  const auto t = ambisim::read_csv((dir / "timing.csv").string());
+  CHECK(t.rows.size() == 12);
+  CHECK(t.number(0, t.require_column("timing.planner_us_per_frame")) == Approx(0.25));
+  CHECK(std::isnan(t.number(0, t.require_column("timing.note"))));
+  CHECK_THROWS_AS(t.require_column("nope"), ambisim::InputError);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("plot writes the chart set per scenario", "[viz][charts]") {
+  const auto dir = make_sweep_dir();
+  ambisim::PlotOptions opt;
+  opt.width = 900;
+  opt.height = 600;
+  const auto written = ambisim::write_sweep_charts(dir.string(), opt);
+  REQUIRE(written.size() == 4);
+  for (const char* name : {"demo_accuracy_cost.png", "demo_speed.png", "demo_coverage_budget.png",
+                           "demo__nearest__b0.500000__v1_series.png"}) {
+    const auto p = dir / "charts" / name;
+    REQUIRE(fs::is_regular_file(p));
+    const auto img = ambisim::read_png(p.string());
+    CHECK(img.width == 900);
+    CHECK(img.height == 600);
+    CHECK(distinct_colours(img) > 40);
+  }
+  // Existing charts are kept unless overwriting is allowed.
+  CHECK_THROWS_AS(ambisim::write_sweep_charts(dir.string(), opt), ambisim::InputError);
+  opt.overwrite = ambisim::Overwrite::allow;
+  opt.run_id = "demo__nearest__b0.500000__v1";
+  CHECK(ambisim::write_sweep_charts(dir.string(), opt).size() == 4);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("plot rejects bad input naming the file", "[viz][charts]") {
+  const auto dir = make_sweep_dir();
+  ambisim::PlotOptions opt;
+  opt.run_id = "no_such_run";
+  try {
+    ambisim::write_sweep_charts(dir.string(), opt);
+    FAIL("no error for an unknown run");
+  } catch (const ambisim::InputError& e) {
+    CHECK(std::string(e.what()).find("summary.csv") != std::string::npos);
+    CHECK(std::string(e.what()).find("no_such_run") != std::string::npos);
+  }
+  CHECK_FALSE(fs::exists(dir / "charts"));
+  opt.run_id.clear();
+  fs::remove(dir / "summary.csv");
+  try {
+    ambisim::write_sweep_charts(dir.string(), opt);
+    FAIL("no error for a missing summary.csv");
+  } catch (const ambisim::InputError& e) {
+    CHECK(std::string(e.what()).find("summary.csv") != std::string::npos);
+  }
+  CHECK_THROWS_AS(ambisim::write_sweep_charts((dir / "missing").string(), opt),
+                  ambisim::InputError);
+  fs::remove_all(dir);
+}

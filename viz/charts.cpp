@@ -1,0 +1,708 @@
+#include "viz/charts.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <set>
+
+#include <vtkAxis.h>
+#include <vtkBrush.h>
+#include <vtkChartLegend.h>
+#include <vtkChartMatrix.h>
+#include <vtkChartXY.h>
+#include <vtkContextScene.h>
+#include <vtkContextView.h>
+#include <vtkFloatArray.h>
+#include <vtkNew.h>
+#include <vtkPen.h>
+#include <vtkPlot.h>
+#include <vtkPlotPoints.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkTable.h>
+#include <vtkTextActor.h>
+#include <vtkTextProperty.h>
+#include <vtkVector.h>
+#include <nlohmann/json.hpp>
+
+#include "sim/input_error.h"
+#include "sim/json_reader.h"
+#include "viz/csv_table.h"
+#include "viz/render_capture.h"
+
+namespace fs = std::filesystem;
+
+namespace ambisim {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Tableau 10: distinct, readable on white.
+constexpr unsigned char kPalette[][3] = {
+    {31, 119, 180}, {255, 127, 14},  {44, 160, 44},   {214, 39, 40},  {148, 103, 189},
+    {140, 86, 75},  {227, 119, 194}, {127, 127, 127}, {188, 189, 34}, {23, 190, 207}};
+constexpr int kPaletteSize = 10;
+
+std::string fmt(double v) {
+  char buf[32];
+  if (std::fabs(v - std::round(v)) < 1e-9 && std::fabs(v) < 1e9) {
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+  } else {
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+  }
+  return buf;
+}
+
+// One run of summary.csv with what the charts need.
+struct RunPoint {
+  std::string run, scenario, label;
+  double faces_per_frame = kNaN, speed_scale = kNaN, fps = kNaN, faces_per_s = kNaN;
+  double speed = kNaN;  // m/s, or the speed scale when the scenario's speed is unknown
+  double de_p95 = kNaN, pops_per_min = kNaN, coverage = kNaN, us_per_frame = kNaN;
+};
+
+struct ScenarioInfo {
+  std::string name;
+  bool speed_known = false;  // speed in m/s (else: speed scale)
+  std::vector<const RunPoint*> runs;
+};
+
+// The scenario's camera speed in m/s from a run's result.json document (already scaled by the
+// run's speed_scale): "speed_mps", or the mean of a speed profile's breakpoints.
+std::optional<double> document_speed(const nlohmann::json& result) {
+  const auto* cam = &result;
+  for (const char* key : {"scenario", "document", "camera"}) {
+    if (!cam->is_object() || !cam->contains(key)) return std::nullopt;
+    cam = &(*cam)[key];
+  }
+  if (cam->contains("speed_mps") && (*cam)["speed_mps"].is_number()) {
+    return (*cam)["speed_mps"].get<double>();
+  }
+  if (cam->contains("speed_profile") && (*cam)["speed_profile"].is_array()) {
+    double sum = 0.0;
+    int n = 0;
+    for (const auto& p : (*cam)["speed_profile"]) {
+      if (p.is_object() && p.contains("speed_mps") && p["speed_mps"].is_number()) {
+        sum += p["speed_mps"].get<double>();
+        ++n;
+      }
+    }
+    if (n > 0) return sum / n;
+  }
+  return std::nullopt;
+}
+
+vtkSmartPointer<vtkTable> make_table(const ChartSeries& s, bool log_x) {
+  vtkNew<vtkFloatArray> xs, ys;
+  xs->SetName("x");
+  ys->SetName(s.name.c_str());
+  std::vector<std::pair<double, double>> pts;
+  for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+    if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+    if (log_x && s.x[i] <= 0.0) continue;
+    pts.emplace_back(s.x[i], s.y[i]);
+  }
+  for (const auto& [x, y] : pts) {
+    xs->InsertNextValue(static_cast<float>(x));
+    ys->InsertNextValue(static_cast<float>(y));
+  }
+  auto table = vtkSmartPointer<vtkTable>::New();
+  table->AddColumn(xs);
+  table->AddColumn(ys);
+  return table;
+}
+
+void style_axis(vtkAxis* axis, const std::string& title) {
+  axis->SetTitle(title);
+  axis->GetTitleProperties()->SetFontSize(17);
+  axis->GetTitleProperties()->BoldOff();
+  axis->GetLabelProperties()->SetFontSize(14);
+  axis->GetGridPen()->SetColor(225, 225, 225, 255);
+}
+
+// Data range of a panel's finite points (x > 0 when log_x).
+bool data_range(const ChartPanel& p, double x[2], double y[2]) {
+  x[0] = y[0] = std::numeric_limits<double>::infinity();
+  x[1] = y[1] = -std::numeric_limits<double>::infinity();
+  bool any = false;
+  for (const auto& s : p.series) {
+    for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i]) || (p.log_x && s.x[i] <= 0)) continue;
+      x[0] = std::min(x[0], s.x[i]);
+      x[1] = std::max(x[1], s.x[i]);
+      y[0] = std::min(y[0], s.y[i]);
+      y[1] = std::max(y[1], s.y[i]);
+      any = true;
+    }
+  }
+  return any;
+}
+
+void fill_chart(vtkChartXY* chart, const ChartPanel& p) {
+  chart->SetTitle(p.title);
+  chart->GetTitleProperties()->SetFontSize(18);
+  chart->GetTitleProperties()->BoldOn();
+  style_axis(chart->GetAxis(vtkAxis::BOTTOM), p.x_label);
+  style_axis(chart->GetAxis(vtkAxis::LEFT), p.y_label);
+  int shown = 0;
+  const std::size_t count = p.series.size();
+  for (std::size_t k = 0; k < count; ++k) {
+    const ChartSeries& s = p.series[k];
+    auto table = make_table(s, p.log_x);
+    if (table->GetNumberOfRows() == 0) continue;
+    vtkPlot* plot = chart->AddPlot(vtkChart::LINE);
+    plot->SetInputData(table, 0, 1);
+    plot->SetLabel(s.name);
+    plot->SetColor(s.rgb[0], s.rgb[1], s.rgb[2], s.alpha);
+    // Later lines are drawn thinner so that equal results stay visible under each other.
+    const float shrink =
+        count > 1 ? static_cast<float>(count - 1 - k) / static_cast<float>(count - 1) : 0.0f;
+    const bool front = s.alpha < 255 || !p.stagger_widths;
+    plot->SetWidth(front ? s.width : s.width + 2.5f * shrink);
+    plot->GetPen()->SetLineType(s.line_type);
+    if (auto* pts = vtkPlotPoints::SafeDownCast(plot)) {
+      pts->SetMarkerStyle(s.marker);
+      pts->SetMarkerSize(front ? s.marker_size : s.marker_size + 7.0f * shrink);
+    }
+    ++shown;
+  }
+  chart->SetShowLegend(shown > 0);
+  chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
+  chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
+  chart->GetLegend()->GetLabelProperties()->SetFontSize(14);
+  chart->GetLegend()->GetBrush()->SetColor(255, 255, 255, 215);
+
+  double xr[2], yr[2];
+  if (!data_range(p, xr, yr)) {
+    xr[0] = 0;
+    xr[1] = 1;
+    yr[0] = 0;
+    yr[1] = 1;
+  }
+  vtkAxis* bx = chart->GetAxis(vtkAxis::BOTTOM);
+  vtkAxis* ly = chart->GetAxis(vtkAxis::LEFT);
+  if (p.log_x) {
+    bx->SetLogScale(true);
+    bx->SetUnscaledRange(xr[0] / 1.25, xr[1] * 1.25);
+  } else {
+    const double pad =
+        xr[1] > xr[0] ? 0.06 * (xr[1] - xr[0]) : std::max(0.5, 0.1 * std::fabs(xr[0]));
+    bx->SetRange(xr[0] - pad, xr[1] + pad);
+  }
+  bx->SetBehavior(vtkAxis::FIXED);
+  double y0 = p.y_from_zero ? std::min(0.0, yr[0]) : yr[0];
+  double y1 = yr[1];
+  if (y1 <= y0) y1 = y0 + 1.0;
+  // Room at the top for the legend.
+  const int legend_lines = shown;
+  y1 += (y1 - y0) * (0.08 + 0.05 * legend_lines);
+  if (!p.y_from_zero) y0 -= (y1 - y0) * 0.05;
+  ly->SetRange(y0, y1);
+  ly->SetBehavior(vtkAxis::FIXED);
+}
+
+}  // namespace
+
+void write_chart_png(const std::string& title, const std::vector<ChartPanel>& panels, int columns,
+                     const std::string& path, Overwrite overwrite, int width, int height) {
+  vtkNew<vtkContextView> view;
+  vtkRenderWindow* win = view->GetRenderWindow();
+  win->SetOffScreenRendering(1);
+  win->SetSize(width, height);
+  win->SetMultiSamples(0);
+  view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
+
+  const int n = static_cast<int>(panels.size());
+  const int cols = std::max(1, std::min(columns, n));
+  const int rows = (n + cols - 1) / cols;
+  vtkNew<vtkChartMatrix> matrix;
+  matrix->SetSize(vtkVector2i(cols, rows));
+  // The charts' axes fill their rectangles: borders and gutters hold labels and titles.
+  matrix->SetBorders(95, 72, 30, 92);
+  matrix->SetGutter(vtkVector2f(100.0f, 110.0f));
+  view->GetScene()->AddItem(matrix);
+  for (int i = 0; i < n; ++i) {
+    const vtkVector2i pos(i % cols, rows - 1 - i / cols);
+    auto* chart = vtkChartXY::SafeDownCast(matrix->GetChart(pos));
+    if (chart == nullptr) continue;
+    fill_chart(chart, panels[static_cast<std::size_t>(i)]);
+  }
+
+  vtkNew<vtkTextActor> heading;
+  heading->SetInput(title.c_str());
+  heading->GetTextProperty()->SetFontSize(22);
+  heading->GetTextProperty()->BoldOn();
+  heading->GetTextProperty()->SetColor(0.1, 0.1, 0.1);
+  heading->GetTextProperty()->SetJustificationToCentered();
+  heading->GetTextProperty()->SetVerticalJustificationToTop();
+  heading->SetPosition(width / 2.0, height - 12.0);
+  view->GetRenderer()->AddActor2D(heading);
+
+  render_window_to_png(win, path, overwrite);
+}
+
+namespace {
+
+struct SweepData {
+  std::string dir;
+  std::string summary_path;
+  std::vector<RunPoint> runs;
+  std::vector<ScenarioInfo> scenarios;
+  std::map<std::string, int> label_colour;
+};
+
+SweepData load_sweep_data(const std::string& dir) {
+  SweepData d;
+  d.dir = dir;
+  if (!fs::is_directory(dir))
+    throw InputError(dir, "", "not a directory (expected a sweep output)");
+  d.summary_path = (fs::path(dir) / "summary.csv").string();
+  if (!fs::is_regular_file(d.summary_path)) {
+    throw InputError(d.summary_path, "", "missing: not a sweep output directory");
+  }
+  const CsvTable s = read_csv(d.summary_path);
+  const int c_run = s.require_column("run");
+  const int c_scn = s.require_column("scenario");
+  const int c_label = s.require_column("label");
+  const int c_fpf = s.require_column("faces_per_frame");
+  const int c_speed = s.require_column("speed_scale");
+  const int c_fps = s.require_column("fps");
+  const int c_frames = s.require_column("frames");
+  const int c_dur = s.require_column("duration_s");
+  const int c_p95 = s.require_column("error.de2000.p95");
+  const int c_pops = s.require_column("pops.per_min");
+  const int c_cov = s.require_column("coverage.mean");
+  if (s.rows.empty()) throw InputError(d.summary_path, "", "no runs");
+
+  std::map<std::string, double> us;
+  const std::string timing_path = (fs::path(dir) / "timing.csv").string();
+  if (fs::is_regular_file(timing_path)) {
+    const CsvTable t = read_csv(timing_path);
+    const int tr = t.require_column("run");
+    const int tu = t.require_column("timing.planner_us_per_frame");
+    for (std::size_t i = 0; i < t.rows.size(); ++i) us[t.text(i, tr)] = t.number(i, tu);
+  }
+
+  for (std::size_t i = 0; i < s.rows.size(); ++i) {
+    RunPoint r;
+    r.run = s.text(i, c_run);
+    r.scenario = s.text(i, c_scn);
+    r.label = s.text(i, c_label);
+    r.faces_per_frame = s.number(i, c_fpf);
+    r.speed_scale = s.number(i, c_speed);
+    const double fps_col = s.number(i, c_fps);
+    const double frames = s.number(i, c_frames), dur = s.number(i, c_dur);
+    // fps 0: the scenario's own schedule; its mean rate is frames / duration.
+    r.fps = fps_col > 0 ? fps_col : (dur > 0 ? frames / dur : kNaN);
+    r.faces_per_s = r.faces_per_frame * r.fps;
+    r.de_p95 = s.number(i, c_p95);
+    r.pops_per_min = s.number(i, c_pops);
+    r.coverage = s.number(i, c_cov);
+    if (auto it = us.find(r.run); it != us.end()) r.us_per_frame = it->second;
+    d.runs.push_back(std::move(r));
+    if (!d.label_colour.contains(d.runs.back().label)) {
+      const int k = static_cast<int>(d.label_colour.size());
+      d.label_colour[d.runs.back().label] = k;
+    }
+  }
+  for (const auto& r : d.runs) {
+    auto it = std::find_if(d.scenarios.begin(), d.scenarios.end(),
+                           [&](const ScenarioInfo& x) { return x.name == r.scenario; });
+    if (it == d.scenarios.end()) {
+      d.scenarios.push_back({r.scenario, false, {}});
+      it = d.scenarios.end() - 1;
+    }
+    it->runs.push_back(&r);
+  }
+  // Camera speeds: the scenario's nominal speed from one run's result.json.
+  for (auto& sc : d.scenarios) {
+    double base = kNaN;
+    for (const RunPoint* r : sc.runs) {
+      const fs::path rj = fs::path(dir) / "runs" / r->run / "result.json";
+      if (!fs::is_regular_file(rj)) continue;
+      const auto speed = document_speed(load_json_file(rj.string()));
+      if (speed && r->speed_scale > 0) base = *speed / r->speed_scale;
+      break;
+    }
+    sc.speed_known = std::isfinite(base);
+    for (const RunPoint* r : sc.runs) {
+      const_cast<RunPoint*>(r)->speed = sc.speed_known ? base * r->speed_scale : r->speed_scale;
+    }
+  }
+  return d;
+}
+
+const unsigned char* colour_of(const SweepData& d, const std::string& label) {
+  return kPalette[d.label_colour.at(label) % kPaletteSize];
+}
+
+ChartSeries make_series(const SweepData& d, const std::string& name, const std::string& label) {
+  ChartSeries s;
+  s.name = name;
+  const unsigned char* c = colour_of(d, label);
+  std::copy(c, c + 3, s.rgb);
+  return s;
+}
+
+// Distinct values (sorted) of a field over runs.
+template <class F>
+std::vector<double> distinct(const std::vector<const RunPoint*>& runs, F f) {
+  std::set<double> v;
+  for (const RunPoint* r : runs) {
+    const double x = f(*r);
+    if (std::isfinite(x)) v.insert(x);
+  }
+  return {v.begin(), v.end()};
+}
+
+std::string join(const std::vector<double>& v, const char* unit) {
+  std::string s;
+  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + fmt(v[i]);
+  return s + unit;
+}
+
+// Points of one series sorted by x.
+void sort_by_x(ChartSeries& s) {
+  std::vector<std::size_t> idx(s.x.size());
+  for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
+  std::stable_sort(idx.begin(), idx.end(),
+                   [&](std::size_t a, std::size_t b) { return s.x[a] < s.x[b]; });
+  std::vector<double> x, y;
+  for (std::size_t i : idx) {
+    x.push_back(s.x[i]);
+    y.push_back(s.y[i]);
+  }
+  s.x = std::move(x);
+  s.y = std::move(y);
+}
+
+// The Pareto front (lower x and lower y both better) of all finite points of the series.
+ChartSeries pareto_front(const std::vector<ChartSeries>& series) {
+  std::vector<std::pair<double, double>> pts;
+  for (const auto& s : series) {
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+      if (std::isfinite(s.x[i]) && std::isfinite(s.y[i])) pts.emplace_back(s.x[i], s.y[i]);
+    }
+  }
+  std::sort(pts.begin(), pts.end());
+  ChartSeries f;
+  f.name = "Pareto front";
+  f.rgb[0] = f.rgb[1] = f.rgb[2] = 60;
+  f.alpha = 70;
+  f.width = 12.0f;
+  f.marker = 0;
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& [x, y] : pts) {
+    if (y < best) {
+      f.x.push_back(x);
+      f.y.push_back(y);
+      best = y;
+    }
+  }
+  return f;
+}
+
+// Runs at the scenario's nominal speed (the speed scale closest to 1).
+std::vector<const RunPoint*> at_nominal_speed(const ScenarioInfo& sc, double* scale) {
+  const auto scales = distinct(sc.runs, [](const RunPoint& r) { return r.speed_scale; });
+  double best = scales.empty() ? 1.0 : scales[0];
+  for (double s : scales) {
+    if (std::fabs(std::log(s > 0 ? s : 1e-9)) < std::fabs(std::log(best > 0 ? best : 1e-9)))
+      best = s;
+  }
+  *scale = best;
+  std::vector<const RunPoint*> out;
+  for (const RunPoint* r : sc.runs) {
+    if (r->speed_scale == best || (!std::isfinite(best) && !std::isfinite(r->speed_scale)))
+      out.push_back(r);
+  }
+  return out;
+}
+
+std::string speed_text(const ScenarioInfo& sc, const std::vector<const RunPoint*>& runs) {
+  const auto v = distinct(runs, [](const RunPoint& r) { return r.speed; });
+  return sc.speed_known ? "camera " + join(v, " m/s") : "speed scale " + join(v, "x");
+}
+
+// Lines per planner label (and per fps when several), x and y picked by the functions.
+template <class FX, class FY>
+std::vector<ChartSeries> lines_by_label(const SweepData& d,
+                                        const std::vector<const RunPoint*>& runs, FX fx, FY fy) {
+  const bool many_fps = distinct(runs, [](const RunPoint& r) { return r.fps; }).size() > 1;
+  const auto fps_values = distinct(runs, [](const RunPoint& r) { return r.fps; });
+  std::vector<ChartSeries> out;
+  std::vector<std::string> keys;
+  for (const RunPoint* r : runs) {
+    std::string key = r->label;
+    int style = 0;
+    if (many_fps) {
+      key += " @ " + fmt(r->fps) + " fps";
+      style = static_cast<int>(std::find(fps_values.begin(), fps_values.end(), r->fps) -
+                               fps_values.begin());
+    }
+    auto it = std::find(keys.begin(), keys.end(), key);
+    if (it == keys.end()) {
+      keys.push_back(key);
+      out.push_back(make_series(d, key, r->label));
+      out.back().line_type = 1 + style % 4;
+      out.back().marker = 4 - style % 4;
+      it = keys.end() - 1;
+    }
+    ChartSeries& s = out[static_cast<std::size_t>(it - keys.begin())];
+    s.x.push_back(fx(*r));
+    s.y.push_back(fy(*r));
+  }
+  for (auto& s : out) sort_by_x(s);
+  return out;
+}
+
+bool wide_range(const std::vector<double>& v) {
+  return v.size() >= 3 && v.front() > 0 && v.back() / v.front() >= 8.0;
+}
+
+std::string fps_text(const std::vector<const RunPoint*>& runs) {
+  return join(distinct(runs, [](const RunPoint& r) { return r.fps; }), " fps");
+}
+
+std::vector<ChartPanel> accuracy_cost_panels(const SweepData& d, const ScenarioInfo& sc,
+                                             std::string* title) {
+  double scale = 1.0;
+  const auto runs = at_nominal_speed(sc, &scale);
+  *title =
+      sc.name + ": accuracy against cost (" + speed_text(sc, runs) + ", " + fps_text(runs) + ")";
+  ChartPanel a;
+  a.title = "ΔE00 p95 vs capture budget";
+  a.x_label = "capture budget (cube faces per second)";
+  a.y_label = "ΔE00 p95 (CIEDE2000)";
+  a.series = lines_by_label(
+      d, runs, [](const RunPoint& r) { return r.faces_per_s; },
+      [](const RunPoint& r) { return r.de_p95; });
+  a.log_x = wide_range(distinct(runs, [](const RunPoint& r) { return r.faces_per_s; }));
+  a.stagger_widths = true;
+  a.series.insert(a.series.begin(), pareto_front(a.series));
+
+  ChartPanel b;
+  b.title = "ΔE00 p95 vs planner CPU time";
+  b.x_label = "planner time per frame (µs, measured)";
+  b.y_label = "ΔE00 p95 (CIEDE2000)";
+  b.series = lines_by_label(
+      d, runs, [](const RunPoint& r) { return r.us_per_frame; },
+      [](const RunPoint& r) { return r.de_p95; });
+  for (auto& s : b.series) s.line_type = 0;  // CPU time is not an ordered axis per planner
+  b.log_x = wide_range(distinct(runs, [](const RunPoint& r) { return r.us_per_frame; }));
+  b.stagger_widths = true;
+  b.series.insert(b.series.begin(), pareto_front(b.series));
+  return {a, b};
+}
+
+std::vector<ChartPanel> speed_panels(const SweepData& d, const ScenarioInfo& sc,
+                                     std::string* title) {
+  const auto budgets = distinct(sc.runs, [](const RunPoint& r) { return r.faces_per_s; });
+  // Lines per planner and budget (line style by budget); with many budgets, only the
+  // smallest, median and largest.
+  std::vector<double> shown = budgets;
+  if (budgets.size() > 4) shown = {budgets.front(), budgets[budgets.size() / 2], budgets.back()};
+  std::vector<const RunPoint*> runs;
+  for (const RunPoint* r : sc.runs) {
+    if (std::find(shown.begin(), shown.end(), r->faces_per_s) != shown.end()) runs.push_back(r);
+  }
+  *title = sc.name + ": error and pops against camera speed (budgets " + join(shown, " faces/s") +
+           ", " + fps_text(runs) + ")";
+  auto make = [&](auto fy) {
+    std::vector<ChartSeries> out;
+    std::vector<std::string> keys;
+    for (const RunPoint* r : runs) {
+      const int bi =
+          static_cast<int>(std::find(shown.begin(), shown.end(), r->faces_per_s) - shown.begin());
+      const std::string key =
+          shown.size() > 1 ? r->label + ", " + fmt(r->faces_per_s) + " faces/s" : r->label;
+      auto it = std::find(keys.begin(), keys.end(), key);
+      if (it == keys.end()) {
+        keys.push_back(key);
+        out.push_back(make_series(d, key, r->label));
+        out.back().line_type = 1 + bi % 4;
+        out.back().marker = 4 - bi % 4;
+        it = keys.end() - 1;
+      }
+      ChartSeries& s = out[static_cast<std::size_t>(it - keys.begin())];
+      s.x.push_back(r->speed);
+      s.y.push_back(fy(*r));
+    }
+    for (auto& s : out) sort_by_x(s);
+    return out;
+  };
+  const std::string x_label =
+      sc.speed_known ? "camera speed (m/s)" : "camera speed (x the scenario's speed)";
+  ChartPanel a;
+  a.title = "ΔE00 p95 vs camera speed";
+  a.x_label = x_label;
+  a.y_label = "ΔE00 p95 (CIEDE2000)";
+  a.series = make([](const RunPoint& r) { return r.de_p95; });
+  ChartPanel b;
+  b.title = "colour pops vs camera speed";
+  b.x_label = x_label;
+  b.y_label = "pops per receiver-minute";
+  b.series = make([](const RunPoint& r) { return r.pops_per_min; });
+  a.stagger_widths = b.stagger_widths = true;
+  return {a, b};
+}
+
+std::vector<ChartPanel> coverage_panels(const SweepData& d, const ScenarioInfo& sc,
+                                        std::string* title) {
+  double scale = 1.0;
+  const auto runs = at_nominal_speed(sc, &scale);
+  *title = sc.name + ": coverage against capture budget (" + speed_text(sc, runs) + ", " +
+           fps_text(runs) + ")";
+  ChartPanel a;
+  a.title = "probe coverage vs capture budget";
+  a.x_label = "capture budget (cube faces per second)";
+  a.y_label = "coverage (fraction of demand points served)";
+  a.series = lines_by_label(
+      d, runs, [](const RunPoint& r) { return r.faces_per_s; },
+      [](const RunPoint& r) { return r.coverage; });
+  a.stagger_widths = true;
+  a.log_x = wide_range(distinct(runs, [](const RunPoint& r) { return r.faces_per_s; }));
+  return {a};
+}
+
+std::vector<double> json_series(const nlohmann::json& series, const char* key) {
+  std::vector<double> out;
+  if (!series.contains(key) || !series[key].is_array()) return out;
+  for (const auto& v : series[key]) out.push_back(v.is_number() ? v.get<double>() : kNaN);
+  return out;
+}
+
+std::vector<ChartPanel> series_panels(const RunPoint& run, bool speed_known,
+                                      const std::string& result_path, std::string* title) {
+  const nlohmann::json result = load_json_file(result_path);
+  if (!result.contains("series") || !result["series"].is_object()) {
+    throw InputError(result_path, "/series", "missing (not a run result)");
+  }
+  const auto& s = result["series"];
+  const auto t = json_series(s, "time");
+  if (t.empty()) throw InputError(result_path, "/series/time", "missing or empty");
+  std::string planner = run.label;
+  *title = run.scenario + " / " + planner + ": time series of run " + run.run + " (" +
+           fmt(run.faces_per_s) + " faces/s, " + fmt(run.fps) + " fps, " + fmt(run.speed) +
+           (speed_known ? " m/s)" : "x speed)");
+  auto line = [&](const std::string& name, const std::vector<double>& y, int colour) {
+    ChartSeries c;
+    c.name = name;
+    c.x = t;
+    c.y = y;
+    std::copy(kPalette[colour], kPalette[colour] + 3, c.rgb);
+    c.marker = 0;
+    c.width = 2.0f;
+    return c;
+  };
+  ChartPanel err;
+  err.title = "error at the receivers";
+  err.x_label = "time (s)";
+  err.y_label = "ΔE00 (CIEDE2000)";
+  err.series = {line("max over receivers", json_series(s, "de2000_max"), 1),
+                line("mean over receivers", json_series(s, "de2000_mean"), 0)};
+  ChartPanel pops;
+  pops.title = "colour pops";
+  pops.x_label = "time (s)";
+  pops.y_label = "pops so far (count)";
+  {
+    auto p = json_series(s, "pops");
+    double sum = 0.0;
+    for (double& v : p) {
+      if (std::isfinite(v)) sum += v;
+      v = sum;
+    }
+    pops.series = {line("cumulative pops", p, 3)};
+  }
+  ChartPanel live;
+  live.title = "planner state";
+  live.x_label = "time (s)";
+  live.y_label = "count";
+  live.series = {line("live probes", json_series(s, "live_probes"), 2),
+                 line("receivers", json_series(s, "receivers"), 7)};
+  ChartPanel cov;
+  cov.title = "coverage";
+  cov.x_label = "time (s)";
+  cov.y_label = "fraction of demand points served";
+  cov.series = {line("coverage", json_series(s, "coverage"), 4)};
+  return {err, pops, live, cov};
+}
+
+std::string safe_name(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '_' || c == '-' || c == '.';
+    out += ok ? c : '_';
+  }
+  return out.empty() ? "unnamed" : out;
+}
+
+}  // namespace
+
+std::vector<std::string> write_sweep_charts(const std::string& sweep_dir,
+                                            const PlotOptions& options) {
+  const SweepData d = load_sweep_data(sweep_dir);
+  const RunPoint* chosen = nullptr;
+  if (!options.run_id.empty()) {
+    for (const auto& r : d.runs) {
+      if (r.run == options.run_id) chosen = &r;
+    }
+    if (chosen == nullptr) {
+      throw InputError(d.summary_path, "", "unknown run id '" + options.run_id + "'");
+    }
+  }
+  struct Job {
+    std::string path, title;
+    std::vector<ChartPanel> panels;
+    int columns;
+    const RunPoint* series_run = nullptr;
+    bool speed_known = false;
+  };
+  const fs::path charts = fs::path(sweep_dir) / "charts";
+  std::vector<Job> jobs;
+  for (const auto& sc : d.scenarios) {
+    const std::string base = safe_name(sc.name);
+    Job a{(charts / (base + "_accuracy_cost.png")).string(), "", {}, 2};
+    a.panels = accuracy_cost_panels(d, sc, &a.title);
+    Job b{(charts / (base + "_speed.png")).string(), "", {}, 2};
+    b.panels = speed_panels(d, sc, &b.title);
+    Job c{(charts / (base + "_coverage_budget.png")).string(), "", {}, 1};
+    c.panels = coverage_panels(d, sc, &c.title);
+    jobs.push_back(std::move(a));
+    jobs.push_back(std::move(b));
+    jobs.push_back(std::move(c));
+    const RunPoint* sr =
+        chosen ? (chosen->scenario == sc.name ? chosen : nullptr) : sc.runs.front();
+    if (sr != nullptr) {
+      Job s{(charts / (safe_name(sr->run) + "_series.png")).string(), "", {}, 2};
+      s.series_run = sr;
+      s.speed_known = sc.speed_known;
+      jobs.push_back(std::move(s));
+    }
+  }
+  // Time series inputs and every output path are checked before anything is written.
+  for (auto& j : jobs) {
+    if (j.series_run == nullptr) continue;
+    const std::string rp =
+        (fs::path(sweep_dir) / "runs" / j.series_run->run / "result.json").string();
+    if (!fs::is_regular_file(rp)) throw InputError(rp, "", "missing: no result for this run");
+    j.panels = series_panels(*j.series_run, j.speed_known, rp, &j.title);
+  }
+  std::error_code ec;
+  fs::create_directories(charts, ec);
+  if (ec) throw InputError(charts.string(), "", "cannot create directory: " + ec.message());
+  for (const auto& j : jobs) check_output_path(j.path, options.overwrite);
+  std::vector<std::string> written;
+  for (const auto& j : jobs) {
+    write_chart_png(j.title, j.panels, j.columns, j.path, options.overwrite, options.width,
+                    options.height);
+    written.push_back(j.path);
+  }
+  return written;
+}
+
+}  // namespace ambisim

@@ -1,0 +1,55 @@
+#pragma once
+// `ambisim plot`: PNG charts of a sweep directory (summary.csv, timing.csv, runs/*/result.json),
+// drawn with VTK's 2-D charts offscreen. One chart set per scenario, written to DIR/charts/:
+//   <scenario>_accuracy_cost.png   ΔE00 p95 against capture budget (faces/s) and against the
+//                                  planner's CPU time per frame, one line per planner, the
+//                                  Pareto front (lower cost and lower error) marked;
+//   <scenario>_speed.png           ΔE00 p95 and pops per minute against camera speed;
+//   <scenario>_coverage_budget.png coverage against capture budget;
+//   <run>_series.png               one run's time series (error, pops, live probes, coverage):
+//                                  the first run of each scenario, or the run chosen.
+#include <string>
+#include <vector>
+
+#include "sim/output_file.h"
+
+namespace ambisim {
+
+struct PlotOptions {
+  std::string run_id;  // time series of this run only; empty: the first run of each scenario
+  Overwrite overwrite = Overwrite::refuse;
+  int width = 1200;
+  int height = 800;
+};
+
+// Writes the charts; returns the paths written. Throws InputError (naming the file) for a
+// missing directory or summary.csv, missing columns, an unknown run id, or an output that
+// exists without Overwrite::allow (checked before anything is written).
+std::vector<std::string> write_sweep_charts(const std::string& sweep_dir,
+                                            const PlotOptions& options);
+
+// One line of a chart (exposed for tests).
+struct ChartSeries {
+  std::string name;
+  std::vector<double> x, y;  // NaN points are dropped
+  unsigned char rgb[3] = {0, 0, 0};
+  unsigned char alpha = 255;
+  float width = 2.5f;
+  int line_type = 1;  // vtkPen line type: 0 none, 1 solid, 2 dash, 3 dot, 4 dash-dot
+  int marker = 4;     // vtkPlotPoints marker style: 0 none, 1 cross, 2 plus, 3 square, 4 circle
+  float marker_size = 9.0f;
+};
+
+struct ChartPanel {
+  std::string title, x_label, y_label;
+  std::vector<ChartSeries> series;
+  bool log_x = false;
+  bool y_from_zero = true;
+  bool stagger_widths = false;  // earlier series drawn wider (equal results stay visible)
+};
+
+// Renders panels (row-major, `columns` per row) under a title into one PNG.
+void write_chart_png(const std::string& title, const std::vector<ChartPanel>& panels, int columns,
+                     const std::string& path, Overwrite overwrite, int width, int height);
+
+}  // namespace ambisim
