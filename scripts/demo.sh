@@ -1,5 +1,12 @@
 #!/usr/bin/env bash
-# The main job: installs what is missing, builds, and writes the demo outputs to out/demo/.
+# The main job: installs what is missing, builds, then writes to out/demo/ (or $1):
+#   world.png, probe_*.png/json   the default world and a few probes (cube crosses)
+#   sweep/                        the default sweep (both thesis scenarios x every planner x
+#                                 3 budgets x 3 camera speeds): runs/, summary.csv, timing.csv
+#   sweep/charts/                 accuracy vs cost, error and pops vs speed, coverage vs
+#                                 budget, time series
+#   sweep/runs/<run>/views/       ParaView files and PNG snapshots of two motorway runs
+# Rerunning resumes the sweep (finished runs are kept) and redraws the pictures.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 ambisim_setup
@@ -13,7 +20,15 @@ echo "== world map" >&2
 run "$AMBISIM" world "$SCEN/default_world.json" --png "$OUT/world.png" --force
 echo "== probes" >&2
 while read -r name at; do
-  run "$AMBISIM" probe "$SCEN/default_world.json" --at "$at" --above-ground --cube "$OUT/probe_$name.png" \
-    --json --force >"$OUT/probe_$name.json"
+  run "$AMBISIM" probe "$SCEN/default_world.json" --at "$at" --above-ground \
+    --cube "$OUT/probe_$name.png" --json --force >"$OUT/probe_$name.json"
 done <"$SCEN/demo_probes.txt"
-echo "ambisim demo: outputs in $OUT" >&2
+echo "== default sweep (resumable)" >&2
+"$AMBISIM" sweep "$SCEN/sweeps/default.json" --out "$OUT/sweep" --resume
+echo "== charts" >&2
+run "$AMBISIM" plot "$OUT/sweep" --run motorway__ambisim__b1__v1 --force
+echo "== views" >&2
+for r in motorway__ambisim__b1__v1 motorway__shgraph+vp__b1__v1 forest_edge__ambisim__b1__v1; do
+  run "$AMBISIM" viz "$OUT/sweep/runs/$r" --force
+done
+echo "ambisim demo: outputs in $OUT (charts in $OUT/sweep/charts)" >&2
