@@ -13,6 +13,23 @@
 
 namespace ambisim {
 
+ImageRgb8 image_from_vtk(vtkImageData* data) {
+  int dims[3];
+  data->GetDimensions(dims);
+  const int comps = data->GetNumberOfScalarComponents();
+  ImageRgb8 out(dims[0], dims[1]);
+  const auto* src = static_cast<const unsigned char*>(data->GetScalarPointer());
+  for (int y = 0; y < out.height; ++y) {
+    for (int x = 0; x < out.width; ++x) {
+      const unsigned char* s =
+          src + (static_cast<std::size_t>(out.height - 1 - y) * out.width + x) * comps;
+      std::uint8_t* d = out.pixel(x, y);
+      for (int c = 0; c < 3; ++c) d[c] = s[comps >= 3 ? c : 0];
+    }
+  }
+  return out;
+}
+
 void write_png(const ImageRgb8& image, const std::string& path, Overwrite overwrite) {
   vtkNew<vtkImageData> data;
   data->SetDimensions(image.width, image.height, 1);
@@ -38,21 +55,7 @@ ImageRgb8 read_png(const std::string& path) {
   if (reader->CanReadFile(path.c_str()) == 0) throw InputError(path, "", "not a readable PNG");
   reader->SetFileName(path.c_str());
   reader->Update();
-  vtkImageData* data = reader->GetOutput();
-  int dims[3];
-  data->GetDimensions(dims);
-  const int comps = data->GetNumberOfScalarComponents();
-  ImageRgb8 out(dims[0], dims[1]);
-  const auto* src = static_cast<const unsigned char*>(data->GetScalarPointer());
-  for (int y = 0; y < out.height; ++y) {
-    for (int x = 0; x < out.width; ++x) {
-      const unsigned char* s =
-          src + (static_cast<std::size_t>(out.height - 1 - y) * out.width + x) * comps;
-      std::uint8_t* d = out.pixel(x, y);
-      for (int c = 0; c < 3; ++c) d[c] = s[comps >= 3 ? c : 0];
-    }
-  }
-  return out;
+  return image_from_vtk(reader->GetOutput());
 }
 
 }  // namespace ambisim

@@ -5,7 +5,12 @@
 #include "sim/image.h"
 #include "sim/output_file.h"
 
+class vtkImageData;
+
 namespace ambisim {
+
+// A VTK image (bottom row first, 1-4 components) as an 8-bit RGB raster, top row first.
+ImageRgb8 image_from_vtk(vtkImageData* data);
 
 void write_png(const ImageRgb8& image, const std::string& path, Overwrite overwrite);
 

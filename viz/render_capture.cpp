@@ -18,21 +18,7 @@ ImageRgb8 capture_window(vtkRenderWindow* window) {
   grab->SetInputBufferTypeToRGB();
   grab->ReadFrontBufferOff();
   grab->Update();
-  vtkImageData* data = grab->GetOutput();
-  int dims[3];
-  data->GetDimensions(dims);
-  const int comps = data->GetNumberOfScalarComponents();
-  ImageRgb8 out(dims[0], dims[1]);
-  const auto* src = static_cast<const unsigned char*>(data->GetScalarPointer());
-  for (int y = 0; y < out.height; ++y) {
-    for (int x = 0; x < out.width; ++x) {
-      const unsigned char* s =
-          src + (static_cast<std::size_t>(out.height - 1 - y) * out.width + x) * comps;
-      std::uint8_t* d = out.pixel(x, y);
-      for (int c = 0; c < 3; ++c) d[c] = s[comps >= 3 ? c : 0];
-    }
-  }
-  return out;
+  return image_from_vtk(grab->GetOutput());
 }
 
 void render_window_to_png(vtkRenderWindow* window, const std::string& path, Overwrite overwrite) {
