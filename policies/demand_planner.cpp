@@ -45,6 +45,8 @@ PlannerInfo DemandPlanner::info() {
       number_param("lookahead_s", 0.3, Range::closed(0.0, 10.0),
                    "prediction beyond the capture latency"),
       bool_param("route", true, "predict along the road when the camera is on it"),
+      choice_param("priority", "need", {"need", "distance"},
+                   "objects by need (worst-served first) or by distance to the camera"),
       bool_param("adapt", true,
                  "halve the spacing where a new probe disagrees with its neighbours"),
       number_param("adapt_rel", 0.25, Range::positive(),
@@ -67,6 +69,7 @@ DemandPlanner::DemandPlanner(const PlannerParams& params)
       fade_s_(params.number("fade_s")),
       lifetime_s_(params.number("lifetime_s")),
       max_probes_(static_cast<std::size_t>(params.integer("max_probes"))),
+      by_need_(params.choice("priority") == "need"),
       adapt_(params.boolean("adapt")),
       adapt_de_(params.number("adapt_rel")),
       default_sh_(default_ambient()) {
@@ -252,13 +255,32 @@ std::vector<CaptureRequest> DemandPlanner::plan(const FrameContext& ctx) {
     planned_[tag] = {at, spacing * detail, ctx.time};
     out.push_back({at, tag});
   };
-  // 1. The objects the game will light, nearest to the camera first, where they will be.
+  // 1. The objects the game will light, where they will be: the nearest object to the camera
+  // first (the one the player looks at), then by need, the worst-served first (their nearest
+  // probe farthest, relative to the spacing they need), so that when objects appear faster
+  // than they can be captured (a LOD switch) the budget covers them evenly.
   std::vector<std::pair<double, std::size_t>> order;
+  std::size_t closest = 0;
+  double closest_d = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < receivers_.size(); ++i) {
-    order.push_back({glm::distance(receivers_[i].position, ctx.camera_position), i});
+    const double d = glm::distance(receivers_[i].position, ctx.camera_position);
+    if (d < closest_d) {
+      closest_d = d;
+      closest = i;
+    }
   }
-  std::sort(order.begin(), order.end());
-  for (const auto& [d, i] : order) {
+  for (std::size_t i = 0; i < receivers_.size(); ++i) {
+    const glm::dvec3 at = receivers_[i].position + horizon * receivers_[i].velocity;
+    double detail = 1.0;
+    const double need =
+        by_need_ ? nearest_distance(at, &detail) / (required_spacing(focus_.distance(at)) * detail)
+                 : -glm::distance(receivers_[i].position, ctx.camera_position);
+    order.push_back(
+        {i == closest ? std::numeric_limits<double>::infinity() : need, receivers_.size() - i});
+  }
+  std::sort(order.rbegin(), order.rend());
+  for (const auto& [need, k] : order) {
+    const std::size_t i = receivers_.size() - k;
     consider(receivers_[i].position + horizon * receivers_[i].velocity);
   }
   // 2. The camera's predicted path.

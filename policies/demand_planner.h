@@ -86,6 +86,7 @@ class DemandPlanner final : public Planner {
   double fade_s_;
   double lifetime_s_;
   std::size_t max_probes_;
+  bool by_need_;
   bool adapt_;
   double adapt_de_;
   Sh9Rgb default_sh_;
