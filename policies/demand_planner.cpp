@@ -275,10 +275,13 @@ std::vector<CaptureRequest> DemandPlanner::plan(const FrameContext& ctx) {
     const double need =
         by_need_ ? nearest_distance(at, &detail) / (required_spacing(focus_.distance(at)) * detail)
                  : -glm::distance(receivers_[i].position, ctx.camera_position);
-    order.push_back(
-        {i == closest ? std::numeric_limits<double>::infinity() : need, receivers_.size() - i});
+    if (i != closest) order.push_back({need, receivers_.size() - i});
   }
+  // Highest need first; ties (e.g. several objects with no probe at all) in receiver order.
   std::sort(order.rbegin(), order.rend());
+  if (!receivers_.empty()) {
+    consider(receivers_[closest].position + horizon * receivers_[closest].velocity);
+  }
   for (const auto& [need, k] : order) {
     const std::size_t i = receivers_.size() - k;
     consider(receivers_[i].position + horizon * receivers_[i].velocity);
