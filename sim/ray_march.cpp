@@ -1,7 +1,6 @@
 #include "sim/ray_march.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -166,43 +165,30 @@ struct Traversal {
 
 // --- Fast traversal -------------------------------------------------------------------------
 //
-// The recursive traversal above is the definition; the loop below reproduces its result bit
-// for bit at a fraction of the cost. What the recursion returns is fixed by its sequence of
-// leaf pieces: the cells the ray crosses, in order, each with the span [ta, tb] between the
-// crossings of its walls (computed as (plane - o) / d with the plane coordinates the recursion
-// uses), and the first leaf that passes the height test and column_entry. Node culling above
-// the leaves only skips leaves that would fail the test anyway (z is monotone in t, a node's
-// maximum bounds its cells), so any conservative culling gives the same answer.
+// The recursive traversal above is the definition; the loop below finds the same first hit
+// at a fraction of the cost (the same cell and face, the same exact entry distance, except
+// for rays that graze a cell corner or edge within rounding error). It walks the max-mip
+// nodes front to back (descend when a node may hold the hit, skip it and ascend when it
+// cannot) with reciprocal arithmetic in cell units and an extra height margin, so culling is
+// conservative; a leaf that cannot be culled is decided by the exact column_entry, which
+// tests the whole column box. The walk visits the cells the ray crosses in order, so the
+// first leaf whose column the ray enters holds the first hit.
 //
-// The loop walks the max-mip nodes front to back (descend when a node may hold the hit, skip
-// it and ascend when it cannot) with cheap reciprocal arithmetic and an extra height margin,
-// and recomputes the exact leaf span, test and entry only at leaves it cannot cull. The
-// recursion assigns each piece to a child by the piece's midpoint, which matches the
-// geometric cell unless the ray passes within rounding error of a cell corner (an x and a y
-// crossing nearly simultaneous) or of a wall at the span's ends; whenever the ray comes
-// within kTieM metres of such a configuration the fast loop gives up and the recursion
-// decides.
+// Rays the loop is not made for (nearly vertical or nearly axis-parallel ones, whose culling
+// margins it does not cover, and rays passing a cell corner within rounding error) are left
+// to the recursion. A ray starting on a cell wall starts in the cell ahead of it.
 
-constexpr double kTieM = 1e-7;        // separation below which a configuration counts as a tie
+constexpr double kTieM = 1e-7;        // distance to a wall that counts as on the wall
 constexpr double kCullMargin = 1e-5;  // extra height margin of the approximate node culling
 
-// Coordinate of cell-boundary plane m (0 < m), computed exactly as the recursion computes the
-// split plane of a node: (2 i + 1) * (cell * 2^(level - 1)) with m = (2 i + 1) 2^(level - 1).
-double plane_coord(double c, int m) {
-  const int k = std::countr_zero(static_cast<unsigned>(m));
-  return static_cast<double>(m >> k) * (c * static_cast<double>(1 << k));
-}
-
-// Leaf cell of coordinate x on one axis (n cells of size c), or false when x lies so close to
-// an interior wall that the recursion's choice of side is not certain (k converts the
-// distance into the separation measure).
-bool axis_cell(double x, double c, double inv_c, int n, double k, int& i) {
-  // Truncation instead of floor/round (no libm calls on SSE2; negative x clamps to cell 0) and
-  // an approximate 1 / c: near a wall, where either could be off by one, the tie test fails.
-  const double f = std::clamp(x * inv_c, -1.0, n + 1.0);
-  i = std::clamp(static_cast<int>(f), 0, n - 1);
-  const int m = static_cast<int>(f + 0.5);  // nearest wall (f >= -0.5; walls below 1 are edges)
-  return !(m > 0 && m < n && std::abs(x - m * c) * k < kTieM);
+// Leaf cell of coordinate x on one axis (n cells of size c) where a ray moving with
+// component d starts: on (or within rounding error of) an interior wall, the cell ahead.
+inline int start_cell(double x, double d, double c, double inv_c, int n) {
+  const double f = std::clamp(x * inv_c, 0.0, static_cast<double>(n));
+  const int i = std::min(static_cast<int>(f), n - 1);
+  const int m = static_cast<int>(f + 0.5);  // nearest wall
+  if (m > 0 && m < n && std::abs(x - m * c) < kTieM && d != 0.0) return d > 0.0 ? m : m - 1;
+  return i;
 }
 
 enum class FastResult { Hit, Miss, Undecided };
@@ -217,18 +203,20 @@ FastResult march_fast(const World& w, const LocalRay& r, double t0, double t1, R
   const HeightPyramid& pyr = w.pyramid();
   const double c = w.cell_m();
   const int nx = w.nx(), ny = w.ny(), top = pyr.levels() - 1, side = pyr.size(0);
-  // A piece of length dt keeps its midpoint sep * dt / 2 away from the walls it lies between.
-  const double sep = std::min(dx != 0.0 ? adx : 1.0, dy != 0.0 ? ady : 1.0);
-  const double kx = dx != 0.0 ? sep / adx : 1.0, ky = dy != 0.0 ? sep / ady : 1.0;
-  // Approximate node-wall crossings in cell units: t = (wall - o / c) * (c / d).
+  // Node-wall crossings in cell units: t = (wall - o / c) * (c / d).
   const double inv_c = 1.0 / c, oxc = r.o.x * inv_c, oyc = r.o.y * inv_c;
   const double idx = dx != 0.0 ? c / dx : 0.0, idy = dy != 0.0 ? c / dy : 0.0;
+  const double dxc = dx * inv_c, dyc = dy * inv_c;
+  const int sx = dx > 0.0 ? 1 : 0, sy = dy > 0.0 ? 1 : 0;
+  // Passing a cell corner within rounding error (an x and a y wall crossed at nearly the same
+  // t) leaves the order of the two cells ahead, and so the cell hit first when the ray grazes
+  // an edge, to rounding: such rays are left to the recursion. Separations are measured as
+  // |delta t| * sep, and a wall offset in cell units as |delta| * kx (resp. ky).
+  const double sep = std::min(dx != 0.0 ? adx : 1.0, dy != 0.0 ? ady : 1.0);
+  const double kx = sep * std::abs(idx), ky = sep * std::abs(idy);
 
-  int ix, iy;
-  if (!axis_cell(r.o.x + dx * t0, c, inv_c, nx, kx, ix) ||
-      !axis_cell(r.o.y + dy * t0, c, inv_c, ny, ky, iy)) {
-    return FastResult::Undecided;
-  }
+  int ix = start_cell(r.o.x + dx * t0, dx, c, inv_c, nx);
+  int iy = start_cell(r.o.y + dy * t0, dy, c, inv_c, ny);
   // Start at the largest node around the start that lies wholly below the ray's start
   // height (low in cuttings and forests, high in the air); the walk ascends from there.
   int level = 0;
@@ -238,83 +226,59 @@ FastResult march_fast(const World& w, const LocalRay& r, double t0, double t1, R
       ++level;
     }
   }
+  const float* lv = pyr.level_data(level);
+  const double margin = kZEps + kCullMargin;
   double t = t0;
   for (;;) {
     const int mx = ix >> level, my = iy >> level;
-    double tx = kInf, ty = kInf;
-    int bx = 0, by = 0;  // the walls crossed when leaving the node through x / y
-    if (dx > 0.0) {
-      bx = (mx + 1) << level;
-      tx = (bx - oxc) * idx;
-    } else if (dx < 0.0) {
-      bx = mx << level;
-      tx = (bx - oxc) * idx;
-    }
-    if (dy > 0.0) {
-      by = (my + 1) << level;
-      ty = (by - oyc) * idy;
-    } else if (dy < 0.0) {
-      by = my << level;
-      ty = (by - oyc) * idy;
-    }
-    const double t_exit = std::min(std::min(tx, ty), t1);
-    const double z_low = dz < 0.0 ? r.o.z + dz * t_exit : r.o.z + dz * t;
-    const double h_max = pyr.level_data(
-        level)[static_cast<std::size_t>(my) * static_cast<std::size_t>(side >> level) +
-               static_cast<std::size_t>(mx)];
-    if (!(z_low > h_max + kZEps + kCullMargin)) {
+    // The walls crossed when leaving the node through x / y, and when.
+    const int bx = (mx + sx) << level, by = (my + sy) << level;
+    const double tx = dx != 0.0 ? (bx - oxc) * idx : kInf;
+    const double ty = dy != 0.0 ? (by - oyc) * idy : kInf;
+    const double t_wall = std::min(tx, ty);
+    const double z_low = dz < 0.0 ? r.o.z + dz * std::min(t_wall, t1) : r.o.z + dz * t;
+    const double h_max = lv[static_cast<std::size_t>(my) * static_cast<std::size_t>(side >> level) +
+                            static_cast<std::size_t>(mx)];
+    if (!(z_low > h_max + margin)) {
       if (level > 0) {
         --level;
+        lv = pyr.level_data(level);
         continue;
       }
-      // A leaf that may hold the hit: the recursion's exact span and test.
-      double ta = t0, tb = t1;
-      if (dx != 0.0) {
-        const int m_in = dx > 0.0 ? ix : ix + 1, m_out = dx > 0.0 ? ix + 1 : ix;
-        if (m_in > 0 && m_in < nx) ta = std::max(ta, (plane_coord(c, m_in) - r.o.x) / dx);
-        if (m_out > 0 && m_out < nx) tb = std::min(tb, (plane_coord(c, m_out) - r.o.x) / dx);
-      }
-      if (dy != 0.0) {
-        const int m_in = dy > 0.0 ? iy : iy + 1, m_out = dy > 0.0 ? iy + 1 : iy;
-        if (m_in > 0 && m_in < ny) ta = std::max(ta, (plane_coord(c, m_in) - r.o.y) / dy);
-        if (m_out > 0 && m_out < ny) tb = std::min(tb, (plane_coord(c, m_out) - r.o.y) / dy);
-      }
-      if ((tb - ta) * sep < kTieM) return FastResult::Undecided;
-      const double za = r.o.z + dz * ta, zb = r.o.z + dz * tb;
-      if (!(std::min(za, zb) > pyr.max_at(0, ix, iy) + kZEps) && column_entry(w, r, ix, iy, hit)) {
-        return FastResult::Hit;
-      }
+      // A leaf that may hold the hit: the exact entry into its column.
+      if (column_entry(w, r, ix, iy, hit)) return FastResult::Hit;
     }
     // Leave the node.
-    const double t_wall = std::min(tx, ty);
-    const bool wall_x = tx < ty;
-    const int b = wall_x ? bx : by, n_axis = wall_x ? nx : ny;
-    if (b > 0 && b < n_axis && std::abs(t1 - t_wall) * sep < kTieM) return FastResult::Undecided;
     if (t_wall >= t1) return FastResult::Miss;
     if (std::abs(tx - ty) * sep < kTieM) return FastResult::Undecided;
-    if (wall_x) {
-      ix = dx > 0.0 ? bx : bx - 1;
+    int b;
+    if (tx < ty) {
+      b = bx;
+      ix = bx - 1 + sx;
       if (ix < 0 || ix >= nx) return FastResult::Miss;
-      if (dy != 0.0) {
+      if (level > 0 && dy != 0.0) {
         const int lo = my << level, hi = std::min(((my + 1) << level) - 1, ny - 1);
-        int cy;
-        if (!axis_cell(r.o.y + dy * tx, c, inv_c, ny, ky, cy)) return FastResult::Undecided;
-        iy = std::clamp(cy, lo, hi);
+        const double f = std::max(oyc + dyc * tx, 0.0);
+        if (std::abs(f - static_cast<int>(f + 0.5)) * ky < kTieM) return FastResult::Undecided;
+        iy = std::clamp(static_cast<int>(f), lo, hi);
       }
       t = tx;
     } else {
-      iy = dy > 0.0 ? by : by - 1;
+      b = by;
+      iy = by - 1 + sy;
       if (iy < 0 || iy >= ny) return FastResult::Miss;
-      if (dx != 0.0) {
+      if (level > 0 && dx != 0.0) {
         const int lo = mx << level, hi = std::min(((mx + 1) << level) - 1, nx - 1);
-        int cx;
-        if (!axis_cell(r.o.x + dx * ty, c, inv_c, nx, kx, cx)) return FastResult::Undecided;
-        ix = std::clamp(cx, lo, hi);
+        const double f = std::max(oxc + dxc * ty, 0.0);
+        if (std::abs(f - static_cast<int>(f + 0.5)) * kx < kTieM) return FastResult::Undecided;
+        ix = std::clamp(static_cast<int>(f), lo, hi);
       }
       t = ty;
     }
     // Entering a new parent (grandparent) node: cull at its size again.
-    for (int a = 0; a < 2 && level < top && (b & ((2 << level) - 1)) == 0; ++a) ++level;
+    const int before = level;
+    for (int a = 0; a < 1 && level < top && (b & ((2 << level) - 1)) == 0; ++a) ++level;
+    if (level != before) lv = pyr.level_data(level);
   }
 }
 
