@@ -70,6 +70,11 @@ RunResult simulate(const Scenario& scenario, const World& world, const Reference
   std::vector<Planner::ReceiverView> views;
   std::vector<Rgb> planner_e(nn);
   std::size_t frame_index = 0;
+  // Snapshots feed the views; a 30-minute run would otherwise write gigabytes of them.
+  const double snapshot_every =
+      options.snapshot_every_s > 0.0
+          ? std::max(options.snapshot_every_s, motion.schedule().duration() / kMaxSnapshots)
+          : 0.0;
 
   // The oracle (a planner that ignores the budget) is served the reference's own SH9 at a
   // receiver: the representation's ceiling against exactly this reference. A request that is
@@ -225,9 +230,9 @@ RunResult simulate(const Scenario& scenario, const World& world, const Reference
     result.timing.planner_s += seconds_since(t0);
 
     if (options.keep_frames) result.camera_path.push_back(mf.camera.position);
-    if (options.snapshot_every_s > 0.0 &&
+    if (snapshot_every > 0.0 &&
         (result.snapshots.empty() ||
-         mf.frame.time >= result.snapshots.back().time + options.snapshot_every_s - 1e-9)) {
+         mf.frame.time >= result.snapshots.back().time + snapshot_every - 1e-9)) {
       Snapshot snap;
       snap.frame = mf.frame.index;
       snap.time = mf.frame.time;

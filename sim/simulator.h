@@ -62,6 +62,9 @@ struct RunResult {
   std::vector<Snapshot> snapshots;
 };
 
+// At most this many snapshots per run: longer runs space them out.
+inline constexpr double kMaxSnapshots = 120.0;
+
 struct SimulationOptions {
   bool keep_frames = true;        // keep the per-frame series
   double snapshot_every_s = 1.0;  // record a Snapshot this often (0: never)
