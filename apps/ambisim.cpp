@@ -19,8 +19,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+    // --help and --version print their text; a usage error is one line, like any bad input.
+    if (e.get_exit_code() == 0) return app.exit(e);
+    std::cerr << "ambisim: error: " << e.what() << " (see --help)\n";
+    return 2;
   } catch (const ambisim::InputError& e) {
     std::cerr << "ambisim: error: " << e.what() << "\n";
     return 2;

@@ -1,4 +1,5 @@
 // `ambisim probe SCENARIO.json --at X,Y,Z`: one capture, its SH coefficients and irradiance.
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -38,6 +39,12 @@ nlohmann::json rgb_json(const Rgb& c) { return {c.x, c.y, c.z}; }
 
 void run_probe(const ProbeOptions& o) {
   if (o.at.size() != 3) throw InputError("--at", "", "expects X,Y,Z");
+  for (double x : o.at) {
+    // The world's origin may lie up to 1e9 m away; beyond 1e10 m a position is a mistake.
+    if (!std::isfinite(x) || std::abs(x) > 1e10) {
+      throw InputError("--at", "", "coordinates must be finite and within +-1e10 m");
+    }
+  }
   if (!o.cube_png.empty()) {
     check_output_path(o.cube_png, o.force ? Overwrite::allow : Overwrite::refuse);
   }

@@ -1,4 +1,6 @@
 // `ambisim run SCENARIO.json --planner NAME [--set key=value ...] --out DIR`: one run.
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -39,9 +41,23 @@ void run_run(const RunOptions& o) {
     check_output_path((fs::path(o.out) / "result.json").string(), ow);
     check_output_path((fs::path(o.out) / "frames.csv").string(), ow);
     check_output_path((fs::path(o.out) / "views.json").string(), ow);
+  } else {
+    // The directory is created at the end: its nearest existing ancestor must be a writable
+    // directory now, not after the simulation.
+    fs::path parent = fs::absolute(fs::path(o.out)).parent_path();
+    while (!parent.empty() && !fs::exists(parent) && parent != parent.parent_path()) {
+      parent = parent.parent_path();
+    }
+    if (!fs::is_directory(parent)) {
+      throw InputError(o.out, "", "cannot be created: " + parent.string() + " is not a directory");
+    }
+    if (::access(parent.c_str(), W_OK) != 0) {
+      throw InputError(o.out, "", "cannot be created: " + parent.string() + " is not writable");
+    }
   }
 
   const World world(scenario.world);
+  check_scenario_world(scenario, world);
   const auto reference = compute_reference_track(scenario, world);
   const RunResult result = simulate(scenario, world, *reference, *planner);
   write_run_output(o.out, scenario, {planner->name(), planner->params()}, result, ow);

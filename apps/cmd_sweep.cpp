@@ -44,6 +44,11 @@ void run_sweep_command(const SweepCliOptions& o) {
     throw InputError("--shard", "", "expects K/N with 1 <= K <= N, got " + o.shard);
   }
   const SweepSpec spec = load_sweep(o.sweep);
+  // Planner names first, at their own JSON path, before any scenario variant is parsed.
+  for (const auto& p : spec.planners) {
+    const std::string at = p.params_pointer.substr(0, p.params_pointer.rfind('/'));
+    (void)find_planner(p.name, spec.file, at);
+  }
   SweepOptions opt;
   opt.jobs =
       o.jobs > 0 ? o.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));

@@ -1,21 +1,23 @@
 // Camera path JSON ("camera" object). Units: metres, seconds, m/s. Defaults in brackets.
 //   type            "keyframes" | "road"                                        ["keyframes"]
 //   keyframes only:
-//     points        [[x, y, z], ...], >= 2 distinct points; the spline passes through them
+//     points        [[x, y, z], ...], >= 2 distinct points, |coordinates| <= 1e10; the spline
+//                   passes through them
 //     z_mode        "absolute" | "above_ground": z is height above the ground at (x, y),
 //                   applied at the points only (the spline between them may dip) ["absolute"]
 //   road only:
 //     lane_offset_m metres right of the centre line, in the direction of travel
 //                                                         [road_width / 4: middle of the lane]
-//     height_m      above the road surface, >= 0                                        [1.5]
-//     start_arc_length_m  road arc length where the camera starts, >= 0                 [0]
+//     height_m      above the road surface, 0..1e5                                      [1.5]
+//     start_arc_length_m  road arc length where the camera starts, 0..road length
+//                   (checked against the built world: check_scenario_world)             [0]
 //     direction     +1 along increasing road arc length, -1 against                     [1]
 //   speed_mps | speed_profile   see speed_profile.h (exactly one is required)
 //   at_end          "hold" (stop at the end) | "loop" (jump back to the start; a cut unless
 //                   the course is closed)                                               ["hold"]
 //   cuts            [{"time_s" > 0, and one of "to_arc_length_m" >= 0 | "to_position" [x,y,z]
 //                    | "jump_ahead_m"}], strictly increasing times                      [none]
-//   periodic_cut    {"every_s" > 0, "first_s" > 0 [every_s], and one of "jump_ahead_m" |
+//   periodic_cut    {"every_s" 0.01..86400, "first_s" > 0 [every_s], and one of "jump_ahead_m" |
 //                    "targets_m": [course coordinates, cycled]}; not together with cuts [none]
 // Course coordinates (to_arc_length_m, targets_m) are metres along the course from where the
 // path starts; they are clamped to the course.
@@ -33,6 +35,15 @@ namespace {
 
 // A loop whose end lies within this of its start is closed: wrapping is not a teleport.
 constexpr double kClosedGap = 1e-6;  // m
+// Positions and course distances: the world's origin may lie up to 1e9 m away, so 1e10 m
+// bounds every real coordinate while keeping differences and lengths finite.
+constexpr double kMaxCoord = 1e10;  // m
+const Range kCoord = Range::closed(-kMaxCoord, kMaxCoord);
+const Range kDistance = Range::closed(0.0, kMaxCoord);
+constexpr double kMaxHeight = 1e5;  // m above the road
+// Spline3 merges points closer than this; a path needs two points farther apart.
+constexpr double kSamePoint = 1e-9;       // m
+constexpr double kMinCutInterval = 0.01;  // s, periodic cuts
 
 std::vector<glm::dvec3> parse_points(ObjectReader& r, const char* key) {
   const nlohmann::json* v = r.raw(key);
@@ -51,9 +62,17 @@ std::vector<glm::dvec3> parse_points(ObjectReader& r, const char* key) {
         throw InputError(r.file(), path + "/" + std::to_string(c), "must be a finite number");
       }
       q[c] = p[c].get<double>();
+      if (std::abs(q[c]) > kMaxCoord) {
+        throw InputError(r.file(), path + "/" + std::to_string(c),
+                         "must be in [-1e10, 1e10] m, got " + p[c].dump());
+      }
     }
     out.push_back(q);
   }
+  const bool distinct = std::any_of(out.begin(), out.end(), [&](const glm::dvec3& q) {
+    return glm::length(q - out.front()) > kSamePoint;
+  });
+  if (!distinct) r.fail(key, "needs at least 2 distinct points");
   return out;
 }
 
@@ -66,13 +85,13 @@ CutRecord parse_cut(ObjectReader& e) {
     e.fail("time_s", "give exactly one of to_arc_length_m, to_position, jump_ahead_m");
   if (e.has("to_arc_length_m")) {
     c.kind = CutRecord::Kind::to_arc_length;
-    c.metres = e.number("to_arc_length_m", Range::non_negative());
+    c.metres = e.number("to_arc_length_m", kDistance);
   } else if (e.has("to_position")) {
     c.kind = CutRecord::Kind::to_position;
-    c.position = e.vec3("to_position");
+    c.position = e.vec3("to_position", kCoord);
   } else {
     c.kind = CutRecord::Kind::jump_ahead;
-    c.metres = e.number("jump_ahead_m");
+    c.metres = e.number("jump_ahead_m", kCoord);
   }
   e.finish();
   return c;
@@ -80,15 +99,16 @@ CutRecord parse_cut(ObjectReader& e) {
 
 PeriodicCutRecord parse_periodic(ObjectReader& p) {
   PeriodicCutRecord rec;
-  rec.every_s = p.number("every_s", Range::positive());
+  // Every periodic cut is cached as an anchor: at most 86400 s / 0.01 s of them.
+  rec.every_s = p.number("every_s", Range::closed(kMinCutInterval, 86400.0));
   rec.first_s = p.number("first_s", rec.every_s, Range::positive());
   if (p.has("jump_ahead_m") == p.has("targets_m")) {
     p.fail("every_s", "give exactly one of jump_ahead_m or targets_m");
   }
   if (p.has("jump_ahead_m")) {
-    rec.jump_ahead_m = p.number("jump_ahead_m");
+    rec.jump_ahead_m = p.number("jump_ahead_m", kCoord);
   } else {
-    rec.targets_m = p.numbers("targets_m", Range::non_negative());
+    rec.targets_m = p.numbers("targets_m", kDistance);
     if (rec.targets_m.empty()) p.fail("targets_m", "needs at least one target");
   }
   p.finish();
@@ -109,8 +129,8 @@ CameraPathRecord parse_camera_path(ObjectReader& r) {
     rec.type = CameraPathRecord::Type::road;
     if (r.has("lane_offset_m"))
       rec.lane_offset_m = r.number("lane_offset_m", Range::closed(-1e3, 1e3));
-    rec.height_m = r.number("height_m", 1.5, Range::non_negative());
-    rec.start_arc_length_m = r.number("start_arc_length_m", 0.0, Range::non_negative());
+    rec.height_m = r.number("height_m", 1.5, Range::closed(0.0, kMaxHeight));
+    rec.start_arc_length_m = r.number("start_arc_length_m", 0.0, kDistance);
     rec.direction = r.integer("direction", 1, Range::closed(-1, 1));
     if (rec.direction == 0) r.fail("direction", "must be +1 or -1");
   }

@@ -9,12 +9,16 @@ namespace ambisim {
 namespace {
 
 constexpr double kMaxFps = 10000.0;
+constexpr double kMaxDuration = 86400.0;  // s: one day
+// Every frame keeps a row of per-frame series and reference samples: beyond this a run is a
+// mistake (1e6 frames: 4.6 h at 60 fps), not a simulation, and is refused before it starts.
+constexpr std::int64_t kMaxFrames = 1000000;
 
 }  // namespace
 
 FrameScheduleRecord parse_frame_schedule(ObjectReader& r) {
   FrameScheduleRecord rec;
-  rec.duration_s = r.number("duration_s", 10.0, Range::positive());
+  rec.duration_s = r.number("duration_s", 10.0, {0.0, kMaxDuration, true, false});
   if (r.has("fps") && r.has("segments")) r.fail("segments", "give fps or segments, not both");
   if (r.has("segments")) {
     auto entries = r.objects("segments");
@@ -39,6 +43,11 @@ FrameScheduleRecord parse_frame_schedule(ObjectReader& r) {
     rec.segments.push_back({0.0, r.number("fps", 60.0, {0.0, kMaxFps, true, false}), false});
   }
   r.finish();
+  const std::int64_t frames = FrameSchedule(rec).frame_count();
+  if (frames > kMaxFrames) {
+    r.fail("duration_s", "gives " + std::to_string(frames) +
+                             " frames at this frame rate; at most " + std::to_string(kMaxFrames));
+  }
   return rec;
 }
 

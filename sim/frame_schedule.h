@@ -22,7 +22,7 @@ struct FrameScheduleRecord {
 };
 
 // JSON ("frames" object):
-//   duration_s  > 0, seconds simulated                                           [10]
+//   duration_s  > 0 and <= 86400, seconds simulated; at most 1e6 frames in all    [10]
 //   fps         > 0 and <= 10000, constant frame rate                            [60]
 //   segments    [{"from_s" >= 0 (first must be 0), "fps" > 0, "ramp_to_next" [false]}]
 //               instead of fps; from_s strictly increasing; the last may not ramp.

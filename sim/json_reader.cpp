@@ -72,6 +72,12 @@ nlohmann::json load_json_file(const std::string& path) {
     throw InputError(
         path, "",
         "invalid JSON at line " + std::to_string(line) + ", column " + std::to_string(col));
+  } catch (const nlohmann::json::exception& e) {
+    // E.g. a number too large for a double (1e999): nlohmann reports it as out_of_range.
+    std::string what = e.what();
+    const std::size_t close = what.find("] ");
+    if (close != std::string::npos) what.erase(0, close + 2);
+    throw InputError(path, "", "invalid JSON: " + what);
   }
 }
 

@@ -1,17 +1,18 @@
 // Receivers JSON ("receivers" object). Units: metres, seconds, m/s. Defaults in brackets.
 //   seed            non-negative integer                                                 [1]
-//   camera_object   {"enabled" [true], "ahead_m" [8] along the camera's horizontal heading,
-//                    "height_m" >= 0 above the ground [1]}
+//   camera_object   {"enabled" [true], "ahead_m" [8] along the camera's horizontal heading
+//                    (-1e4..1e4), "height_m" 0..1e4 above the ground [1]}
 //   lod_props       absent = none; {"trigger": [x, y, z] required (x, y used),
 //                    "lod_distance_m" > 0 [200], "rate_per_s" >= 0 [50],
 //                    "band_near_m" >= 0 [20], "band_far_m" >= near [150],
 //                    "band_half_width_m" >= 0 [40], "min_height_m" >= 0 [0.5],
 //                    "max_height_m" >= min [2], "lifetime_s" > 0 [30],
-//                    "behind_margin_m" >= 0 [10], "max_live" >= 0 [1000]}
-//   traffic         absent = none; {"rate_per_s" >= 0 [10], "speed_mps" >= 0 [30], "speed_spread"
-//   0..0.9 [0],
+//                    "behind_margin_m" >= 0 [10], "max_live" 0..10000 [1000]}
+//   traffic         absent = none; needs the world's road; {"rate_per_s" 0..1e4 [10],
+//                    "speed_mps" 0..1000 [30], "speed_spread" 0..0.9 [0],
 //                    "window_behind_m" >= 0 [200], "window_ahead_m" >= 0 [800],
-//                    "lane_offset_m" [road_width / 4], "height_m" >= 0 [1], "max_live" >= 0 [500]}
+//                    "lane_offset_m" [road_width / 4], "height_m" >= 0 [1],
+//                    "max_live" 0..10000 [500]}
 #include "sim/receivers.h"
 
 #include <algorithm>
@@ -27,6 +28,10 @@ namespace ambisim {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// Every live receiver gets a reference capture on every frame: beyond this many a run would
+// never finish (and its reference would not fit in memory).
+constexpr int kMaxLive = 10000;
+constexpr double kMaxOffset = 1e4;  // m: camera object placement
 // Spawn counts are floor(active seconds x rate); this absorbs float error in the product so
 // that 10 s at 50/s is 500, not 499.
 constexpr double kCountSnap = 1e-9;
@@ -61,13 +66,13 @@ ReceiversRecord parse_receivers(ObjectReader& r) {
   rec.seed = r.seed("seed", 1);
   if (auto c = r.optional_object("camera_object")) {
     rec.camera_object.enabled = c->boolean("enabled", true);
-    rec.camera_object.ahead_m = c->number("ahead_m", 8.0);
-    rec.camera_object.height_m = c->number("height_m", 1.0, Range::non_negative());
+    rec.camera_object.ahead_m = c->number("ahead_m", 8.0, Range::closed(-kMaxOffset, kMaxOffset));
+    rec.camera_object.height_m = c->number("height_m", 1.0, Range::closed(0.0, kMaxOffset));
     c->finish();
   }
   if (auto p = r.optional_object("lod_props")) {
     LodPropsRecord l;
-    l.trigger = p->vec3("trigger");
+    l.trigger = p->vec3("trigger", Range::closed(-1e10, 1e10));
     l.lod_distance_m = p->number("lod_distance_m", l.lod_distance_m, Range::positive());
     l.rate_per_s = p->number("rate_per_s", l.rate_per_s, Range::closed(0.0, 1e4));
     l.band_near_m = p->number("band_near_m", l.band_near_m, Range::non_negative());
@@ -80,7 +85,7 @@ ReceiversRecord parse_receivers(ObjectReader& r) {
     if (l.max_height_m < l.min_height_m) p->fail("max_height_m", "must be >= min_height_m");
     l.lifetime_s = p->number("lifetime_s", l.lifetime_s, Range::positive());
     l.behind_margin_m = p->number("behind_margin_m", l.behind_margin_m, Range::non_negative());
-    l.max_live = p->integer("max_live", l.max_live, Range::non_negative());
+    l.max_live = p->integer("max_live", l.max_live, Range::closed(0, kMaxLive));
     p->finish();
     rec.lod_props = l;
   }
@@ -95,7 +100,7 @@ ReceiversRecord parse_receivers(ObjectReader& r) {
       tr.lane_offset_m = t->number("lane_offset_m", Range::closed(-1e3, 1e3));
     }
     tr.height_m = t->number("height_m", tr.height_m, Range::non_negative());
-    tr.max_live = t->integer("max_live", tr.max_live, Range::non_negative());
+    tr.max_live = t->integer("max_live", tr.max_live, Range::closed(0, kMaxLive));
     t->finish();
     rec.traffic = tr;
   }

@@ -5,6 +5,7 @@
 
 #include "sim/hash.h"
 #include "sim/json_reader.h"
+#include "sim/world.h"
 
 namespace ambisim {
 namespace {
@@ -85,7 +86,28 @@ Scenario parse_scenario(const nlohmann::json& document, const std::string& file)
   }
   if (auto r = root.optional_object("reference")) s.reference = parse_reference(*r);
   root.finish();
+  // Sections that depend on each other.
+  if (!s.world.road.enabled) {
+    if (s.camera.type == CameraPathRecord::Type::road) {
+      throw InputError(file, "/camera/type",
+                       "\"road\" needs the world's road (/world/road/enabled is false)");
+    }
+    if (s.receivers.traffic) {
+      throw InputError(file, "/receivers/traffic",
+                       "needs the world's road (/world/road/enabled is false)");
+    }
+  }
   return s;
+}
+
+void check_scenario_world(const Scenario& s, const World& world) {
+  if (s.camera.type == CameraPathRecord::Type::road &&
+      s.camera.start_arc_length_m > world.road().length()) {
+    char text[96];
+    std::snprintf(text, sizeof text, "is beyond the end of the road (%.1f m long), got %.1f",
+                  world.road().length(), s.camera.start_arc_length_m);
+    throw InputError(s.file, "/camera/start_arc_length_m", text);
+  }
 }
 
 Scenario load_scenario(const std::string& path) {

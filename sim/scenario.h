@@ -51,6 +51,11 @@ Scenario parse_scenario(const nlohmann::json& document, const std::string& file)
 // Loads and parses a scenario file.
 Scenario load_scenario(const std::string& path);
 
+class World;
+// The checks that need the built world (the road's length); throws InputError naming the
+// scenario file and the JSON path. Call before simulating.
+void check_scenario_world(const Scenario& s, const World& world);
+
 // Sets a value inside a document at a JSON pointer ("/camera/speed_mps"), creating objects on
 // the way; used by sweeps to vary one parameter. Throws InputError naming `file` if the path
 // runs through a non-object.

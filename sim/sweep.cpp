@@ -1,5 +1,6 @@
 #include "sim/sweep.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -108,8 +109,7 @@ std::optional<nlohmann::ordered_json> read_result(const fs::path& path) {
 
 }  // namespace
 
-SweepSpec load_sweep(const std::string& path) {
-  const nlohmann::json doc = load_json_file(path);
+SweepSpec parse_sweep(const nlohmann::json& doc, const std::string& path) {
   ObjectReader r(doc, path, "");
   SweepSpec s;
   s.file = path;
@@ -173,9 +173,21 @@ SweepSpec load_sweep(const std::string& path) {
   for (const char* k : {"budgets", "speed_scales", "fps", "seeds"}) {
     if (r.has(k) && doc[k].empty()) r.fail(k, "must not be empty");
   }
+  // The scenario parser limits every variant to 1e6 frames; say so here, where both are set.
+  if (s.duration_s && !s.fps.empty()) {
+    const double top_fps = *std::max_element(s.fps.begin(), s.fps.end());
+    const double frames = std::ceil(*s.duration_s * top_fps);
+    if (frames > 1e6) {
+      r.fail("duration_s", "with fps " + format_number(top_fps) + " gives " +
+                               std::to_string(static_cast<long long>(frames)) +
+                               " frames; at most 1000000");
+    }
+  }
   r.finish();
   return s;
 }
+
+SweepSpec load_sweep(const std::string& path) { return parse_sweep(load_json_file(path), path); }
 
 std::vector<RunSpec> expand_sweep(const SweepSpec& spec) {
   std::vector<RunSpec> runs;
@@ -247,9 +259,6 @@ SweepReport run_sweep(const SweepSpec& spec, const std::string& out_dir,
     }
   }
   const fs::path runs_dir = fs::path(out_dir) / "runs";
-  std::error_code ec;
-  fs::create_directories(runs_dir, ec);
-  if (ec) throw InputError(out_dir, "", "cannot create output directory: " + ec.message());
 
   SweepReport report;
   report.total = mine.size();
@@ -274,6 +283,21 @@ SweepReport run_sweep(const SweepSpec& spec, const std::string& out_dir,
   // Shared inputs: one World per world description, one reference per scenario variant.
   std::mutex mutex;
   std::map<std::string, std::shared_future<std::shared_ptr<const World>>> worlds;
+  // The worlds are built now, one after the other, so that every run to do is checked against
+  // its world (the road's length) before anything is written.
+  for (const RunSpec* r : todo) {
+    const std::string key = r->scenario.document.value("world", nlohmann::json::object()).dump();
+    auto it = worlds.find(key);
+    if (it == worlds.end()) {
+      std::promise<std::shared_ptr<const World>> built;
+      built.set_value(std::make_shared<const World>(r->scenario.world));
+      it = worlds.emplace(key, built.get_future().share()).first;
+    }
+    check_scenario_world(r->scenario, *it->second.get());
+  }
+  std::error_code ec;
+  fs::create_directories(runs_dir, ec);
+  if (ec) throw InputError(out_dir, "", "cannot create output directory: " + ec.message());
   std::map<std::uint64_t, std::shared_future<std::shared_ptr<const ReferenceTrack>>> references;
   auto world_for = [&](const Scenario& sc) {
     const std::string key = sc.document.value("world", nlohmann::json::object()).dump();

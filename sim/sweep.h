@@ -39,6 +39,11 @@ struct SweepSpec {
   nlohmann::json overrides = nlohmann::json::object();  // JSON pointer -> value, for every run
 };
 
+// Parses a sweep document; `path` names it in errors and scenario paths are resolved relative
+// to its directory (the scenario files must exist). Unknown keys are errors.
+SweepSpec parse_sweep(const nlohmann::json& doc, const std::string& path);
+
+// Loads and parses a sweep file.
 SweepSpec load_sweep(const std::string& path);
 
 struct RunSpec {

@@ -7,8 +7,11 @@
 namespace ambisim {
 namespace {
 
+constexpr double kMaxCells = 67108864.0;  // 2^26
+
 Rgb read_rgb(ObjectReader& r, const char* key, const Rgb& fallback) {
-  const glm::dvec3 v = r.vec3(key, glm::dvec3(fallback), Range::non_negative());
+  // Stored as float: bounded far below FLT_MAX so that radiance stays finite.
+  const glm::dvec3 v = r.vec3(key, glm::dvec3(fallback), Range::closed(0.0, 1e6));
   return Rgb(v);
 }
 
@@ -50,7 +53,7 @@ SunParams parse_sun(ObjectReader& r) {
   s.elevation_deg = r.number("elevation_deg", s.elevation_deg, Range::closed(-90.0, 90.0));
   s.azimuth_deg = r.number("azimuth_deg", s.azimuth_deg, Range::closed(-360.0, 360.0));
   s.colour = read_rgb(r, "colour", s.colour);
-  s.radiance_ratio = r.number("radiance_ratio", s.radiance_ratio, Range::non_negative());
+  s.radiance_ratio = r.number("radiance_ratio", s.radiance_ratio, Range::closed(0.0, 1e9));
   s.disc_solid_angle_sr =
       r.number("disc_solid_angle_sr", s.disc_solid_angle_sr, {0.0, 0.1, true, false});
   r.finish();
@@ -90,6 +93,11 @@ WorldParams parse_world_params(ObjectReader& r) {
   }
   if (w.size_m.x / w.cell_m > 16384 || w.size_m.y / w.cell_m > 16384) {
     r.fail("cell_m", "too small for size_m: at most 16384 cells per side");
+  }
+  // About 40 bytes per cell (heights, shadow map, biome, albedo, radiance, pyramid): 2^26
+  // cells (8192 x 8192) is some 3 GB.
+  if (w.size_m.x / w.cell_m * (w.size_m.y / w.cell_m) > kMaxCells) {
+    r.fail("cell_m", "too small for size_m: at most 67108864 (8192 x 8192) cells in all");
   }
   if (auto o = r.optional_object("terrain")) w.terrain = parse_terrain(*o);
   if (auto o = r.optional_object("road")) w.road = parse_road(*o);

@@ -1,20 +1,37 @@
 #!/usr/bin/env bash
-# Bad input: one line naming the file and JSON path, exit code 2, and nothing written.
-# Usage: bad_input.sh AMBISIM_BINARY SOURCE_DIR
+# Bad input: one line naming the file and JSON path, exit code 2, and nothing written: the
+# output path does not appear, or an existing output directory is byte-for-byte unchanged.
+# Covers run, sweep, world, probe, plot and viz. Usage: bad_input.sh AMBISIM_BINARY SOURCE_DIR
 set -u
 bin="$1"
-src="$2"
+src="$(cd "$2" && pwd)"
 tmp="$(mktemp -d)"
-trap 'rm -rf "$tmp"' EXIT
+trap 'chmod -R u+rwx "$tmp" 2>/dev/null; rm -rf "$tmp"' EXIT
 fail=0
+cases=0
+skipped=0
 good="$src/tests/data/small_drive.json"
+# chmod does not stop root from reading or writing: those cases are skipped, not failed.
+as_root=0
+[ "$(id -u)" -eq 0 ] && as_root=1
 
-# expect_error NAME EXPECTED_SUBSTRING -- ARGS...
+# Every file under a directory with its checksum (empty for a missing path).
+fingerprint() {
+  [ -e "$1" ] || return 0
+  (cd "$1" 2>/dev/null && find . -type f -exec sha256sum {} + | sort) || sha256sum "$1"
+}
+
+# expect_error NAME EXPECTED_SUBSTRING OUTPUT_PATH -- ARGS...
+# OUTPUT_PATH must not exist afterwards, or must be unchanged if it existed before.
 expect_error() {
-  local name="$1" want="$2"
-  shift 3
-  local out="$tmp/out_$name"
-  "$bin" "$@" >"$tmp/stdout" 2>"$tmp/stderr"
+  local name="$1" want="$2" out="$3"
+  shift 4
+  cases=$((cases + 1))
+  local before
+  before="$(fingerprint "$out")"
+  local existed=0
+  [ -e "$out" ] && existed=1
+  "$bin" "$@" >"$tmp/stdout" 2>"$tmp/stderr" </dev/null
   local code=$?
   local err
   err="$(cat "$tmp/stderr")"
@@ -27,15 +44,23 @@ expect_error() {
   elif [ "$(wc -l <"$tmp/stderr")" -ne 1 ]; then
     echo "FAIL $name: expected one line, got: $err"
     fail=1
-  elif [ -e "$out" ]; then
-    echo "FAIL $name: output written despite the error"
+  elif [ "$existed" -eq 0 ] && [ -e "$out" ]; then
+    echo "FAIL $name: output $out written despite the error"
+    fail=1
+  elif [ "$existed" -eq 1 ] && [ "$before" != "$(fingerprint "$out")" ]; then
+    echo "FAIL $name: existing output $out changed despite the error"
     fail=1
   else
     echo "ok   $name: $err"
   fi
 }
 
-# mutate NAME PYTHON_EXPRESSION: writes $tmp/NAME.json from the good scenario.
+skip() {
+  skipped=$((skipped + 1))
+  echo "skip $1: $2"
+}
+
+# mutate NAME PYTHON_STATEMENTS: writes $tmp/NAME.json from the good scenario (as d).
 mutate() {
   python3 - "$good" "$tmp/$1.json" "$2" <<'PY'
 import json, sys
@@ -45,30 +70,247 @@ json.dump(d, open(sys.argv[2], "w"))
 PY
 }
 
+# run_error NAME EXPECTED: `ambisim run $tmp/NAME.json` must fail and write nothing.
+run_error() {
+  expect_error "$1" "$2" "$tmp/out_$1" -- run "$tmp/$1.json" --planner constant --out "$tmp/out_$1"
+}
+
+# ---------------------------------------------------------------- scenario files (`run`)
 printf '' >"$tmp/empty.json"
+printf ' \n\t\n' >"$tmp/blank.json"
 printf '{"world": ' >"$tmp/broken.json"
+printf '{"world": {}, "camera": {"speed_mps": 3,}}' >"$tmp/trailing_comma.json"
 head -c 64 /dev/urandom >"$tmp/garbage.json" 2>/dev/null || printf '\x00\x01\xff' >"$tmp/garbage.json"
+printf '\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR' >"$tmp/binary.json"
+printf '[1, 2, 3]' >"$tmp/top_array.json"
+printf '{"world": {"seed": 1e999}}' >"$tmp/overflow.json"
+
+mutate unknown_top 'd["colour"] = "red"'
 mutate unknown_key 'd["camera"]["sped_mps"] = 3'
+mutate unknown_depth3 'd["world"]["terrain"] = {"amplitde_m": 100}'
+mutate unknown_depth4 'del d["camera"]["speed_mps"]; d["camera"]["speed_profile"] = [{"time_s": 0, "speed_mps": 20, "spede": 1}]'
+mutate unknown_traffic 'd["receivers"]["traffic"]["max_alive"] = 6'
 mutate negative_speed 'd["camera"]["speed_mps"] = -3'
 mutate wrong_type 'd["frames"]["fps"] = "sixty"'
+mutate world_not_object 'd["world"] = 5'
+mutate size_wrong_type 'd["world"]["size_m"] = "big"'
+mutate face_fraction 'd["budget"]["face_size"] = 16.5'
 mutate missing_camera 'del d["camera"]'
+mutate missing_frames 'del d["frames"]'
+mutate missing_points 'd["camera"] = {"type": "keyframes", "speed_mps": 5}'
 mutate zero_size 'd["world"]["size_m"] = [0, 512]'
+mutate huge_world 'd["world"]["size_m"] = [1e9, 1e9]'
+mutate too_many_cells 'd["world"]["size_m"] = [16384, 16384]; d["world"]["cell_m"] = 1'
+mutate zero_cell 'd["world"]["cell_m"] = 0'
+mutate canopy_inverted 'd["world"]["terrain"] = {"canopy_min_m": 20, "canopy_max_m": 10}'
+mutate huge_colour 'd["world"]["sky"] = {"zenith": [1e300, 1, 1]}'
+mutate zero_fps 'd["frames"]["fps"] = 0'
+mutate negative_fps 'd["frames"]["fps"] = -30'
+mutate huge_fps 'd["frames"]["fps"] = 1e9'
+mutate zero_duration 'd["frames"]["duration_s"] = 0'
+mutate huge_duration 'd["frames"]["duration_s"] = 1e12'
+mutate too_many_frames 'd["frames"]["duration_s"] = 3600; d["frames"]["fps"] = 1000'
+mutate huge_face 'd["budget"]["face_size"] = 1000000'
+mutate zero_face 'd["budget"]["face_size"] = 0'
 mutate bad_budget 'd["budget"]["faces_per_frame"] = -1'
-mutate huge_face 'd["budget"]["face_size"] = 100000'
+mutate huge_budget 'd["budget"]["faces_per_frame"] = 1e9'
+mutate huge_reference_face 'd["reference"]["face_size"] = 1000000'
+mutate huge_traffic_rate 'd["receivers"]["traffic"]["rate_per_s"] = 1e9'
+mutate huge_max_live 'd["receivers"]["traffic"]["max_live"] = 1000000000'
+mutate negative_seed 'd["receivers"]["seed"] = -5'
+mutate same_points 'd["camera"] = {"points": [[10, 10, 50], [10, 10, 50]], "speed_mps": 5}'
+mutate huge_point 'd["camera"] = {"points": [[-1e300, 10, 50], [1e300, 10, 50]], "speed_mps": 5}'
+mutate tiny_cut_period 'd["camera"]["periodic_cut"] = {"every_s": 1e-9, "jump_ahead_m": 50}'
+mutate road_disabled 'd["world"]["road"]["enabled"] = False; del d["receivers"]["traffic"]'
+mutate traffic_without_road 'd["world"]["road"]["enabled"] = False; d["camera"] = {"points": [[10, 10, 50], [100, 100, 50]], "speed_mps": 5}'
+mutate start_beyond_road 'd["camera"]["start_arc_length_m"] = 1e9'
 
-expect_error missing "no such file" -- run "$tmp/nope.json" --out "$tmp/out_missing"
-expect_error directory "is a directory" -- run "$tmp" --out "$tmp/out_directory"
-expect_error empty "empty.json: is empty" -- run "$tmp/empty.json" --out "$tmp/out_empty"
-expect_error broken "invalid JSON at line 1" -- run "$tmp/broken.json" --out "$tmp/out_broken"
-expect_error garbage "garbage.json" -- run "$tmp/garbage.json" --out "$tmp/out_garbage"
-expect_error unknown_key "unknown_key.json: /camera/sped_mps: unknown key" -- run "$tmp/unknown_key.json" --out "$tmp/out_unknown_key"
-expect_error negative_speed "/camera/speed_mps: must be >= 0, got -3" -- run "$tmp/negative_speed.json" --out "$tmp/out_negative_speed"
-expect_error wrong_type "/frames/fps: must be a number" -- run "$tmp/wrong_type.json" --out "$tmp/out_wrong_type"
-expect_error missing_camera "/camera: required object is missing" -- run "$tmp/missing_camera.json" --out "$tmp/out_missing_camera"
-expect_error zero_size "/world/size_m" -- run "$tmp/zero_size.json" --out "$tmp/out_zero_size"
-expect_error bad_budget "/budget/faces_per_frame" -- run "$tmp/bad_budget.json" --out "$tmp/out_bad_budget"
-expect_error huge_face "/budget/face_size" -- run "$tmp/huge_face.json" --out "$tmp/out_huge_face"
-expect_error unknown_planner "valid planners: oracle" -- run "$good" --planner octopus --out "$tmp/out_unknown_planner"
-expect_error unknown_param "valid parameters" -- run "$good" --planner nearest --set spacing=3 --out "$tmp/out_unknown_param"
-expect_error bad_param "must be a number > 0" -- run "$good" --planner nearest --set spacing_m=-1 --out "$tmp/out_bad_param"
+expect_error missing "nope.json: no such file" "$tmp/out_missing" -- run "$tmp/nope.json" --out "$tmp/out_missing"
+expect_error directory "is a directory" "$tmp/out_directory" -- run "$tmp" --out "$tmp/out_directory"
+run_error empty "empty.json: is empty"
+run_error blank "blank.json: is empty"
+run_error broken "broken.json: invalid JSON at line 1"
+run_error trailing_comma "trailing_comma.json: invalid JSON at line 1, column 41"
+run_error garbage "garbage.json: "
+run_error binary "binary.json: invalid JSON at line 1, column 1"
+run_error top_array "top_array.json: /: must be an object, got array"
+run_error overflow "overflow.json: invalid JSON: number overflow"
+run_error unknown_top "unknown_top.json: /colour: unknown key; valid keys:"
+run_error unknown_key "unknown_key.json: /camera/sped_mps: unknown key"
+run_error unknown_depth3 "unknown_depth3.json: /world/terrain/amplitde_m: unknown key"
+run_error unknown_depth4 "unknown_depth4.json: /camera/speed_profile/0/spede: unknown key"
+run_error unknown_traffic "/receivers/traffic/max_alive: unknown key"
+run_error negative_speed "/camera/speed_mps: must be >= 0, got -3"
+run_error wrong_type "/frames/fps: must be a number, got string"
+run_error world_not_object "/world: must be an object, got number"
+run_error size_wrong_type "/world/size_m: must be an array of 2 numbers"
+run_error face_fraction "/budget/face_size: must be an integer"
+run_error missing_camera "/camera: required object is missing"
+run_error missing_frames "/frames: required object is missing"
+run_error missing_points "/camera/points: required array"
+run_error zero_size "/world/size_m/0: must be >= 16, got 0"
+run_error huge_world "/world/size_m/0: must be <= 65536, got 1000000000"
+run_error too_many_cells "/world/cell_m: too small for size_m: at most 67108864"
+run_error zero_cell "/world/cell_m: must be >= 0.05, got 0"
+run_error canopy_inverted "/world/terrain/canopy_max_m: must be >= canopy_min_m"
+run_error huge_colour "/world/sky/zenith/0: must be <= 1000000"
+run_error zero_fps "/frames/fps: must be > 0, got 0"
+run_error negative_fps "/frames/fps: must be > 0, got -30"
+run_error huge_fps "/frames/fps: must be <= 10000, got 1000000000"
+run_error zero_duration "/frames/duration_s: must be > 0, got 0"
+run_error huge_duration "/frames/duration_s: must be <= 86400, got 1e+12"
+run_error too_many_frames "/frames/duration_s: gives 3600000 frames at this frame rate; at most 1000000"
+run_error huge_face "/budget/face_size: must be <= 1024, got 1000000"
+run_error zero_face "/budget/face_size: must be >= 1, got 0"
+run_error bad_budget "/budget/faces_per_frame: must be >= 0, got -1"
+run_error huge_budget "/budget/faces_per_frame: must be <= 96"
+run_error huge_reference_face "/reference/face_size: must be <= 256"
+run_error huge_traffic_rate "/receivers/traffic/rate_per_s: must be <= 10000"
+run_error huge_max_live "/receivers/traffic/max_live: must be <= 10000"
+run_error negative_seed "/receivers/seed: must be a non-negative integer, got -5"
+run_error same_points "/camera/points: needs at least 2 distinct points"
+run_error huge_point "/camera/points/0/0: must be in [-1e10, 1e10] m"
+run_error tiny_cut_period "/camera/periodic_cut/every_s: must be >= 0.01"
+run_error road_disabled "road_disabled.json: /camera/type: \"road\" needs the world's road"
+run_error traffic_without_road "traffic_without_road.json: /receivers/traffic: needs the world's road"
+run_error start_beyond_road "start_beyond_road.json: /camera/start_arc_length_m: is beyond the end of the road"
+
+# ---------------------------------------------------------------- planners and the command line
+expect_error unknown_planner "valid planners: oracle" "$tmp/out_unknown_planner" -- run "$good" --planner octopus --out "$tmp/out_unknown_planner"
+expect_error unknown_param "valid parameters" "$tmp/out_unknown_param" -- run "$good" --planner nearest --set spacing=3 --out "$tmp/out_unknown_param"
+expect_error bad_param "must be a number > 0" "$tmp/out_bad_param" -- run "$good" --planner nearest --set spacing_m=-1 --out "$tmp/out_bad_param"
+expect_error set_without_value "--set spacing_m: expected key=value" "$tmp/out_set_without_value" -- run "$good" --planner nearest --set spacing_m --out "$tmp/out_set_without_value"
+expect_error missing_out "--out is required" "$tmp/out_missing_out" -- run "$good"
+
+# ---------------------------------------------------------------- output paths
+printf 'x' >"$tmp/a_file"
+expect_error out_is_file "a_file: exists and is not a directory" "$tmp/a_file" -- run "$good" --planner constant --out "$tmp/a_file"
+expect_error out_under_file "cannot be created: $tmp/a_file is not a directory" "$tmp/a_file" -- run "$good" --planner constant --out "$tmp/a_file/sub"
+if [ "$as_root" -eq 1 ]; then
+  skip unreadable "running as root: chmod 000 does not stop root from reading"
+  skip unwritable_out "running as root: chmod 555 does not stop root from writing"
+else
+  cp "$good" "$tmp/unreadable.json" && chmod 000 "$tmp/unreadable.json"
+  run_error unreadable "unreadable.json: cannot be opened for reading"
+  mkdir -p "$tmp/locked" && chmod 555 "$tmp/locked"
+  expect_error unwritable_out "is not writable" "$tmp/locked/out" -- run "$good" --planner constant --out "$tmp/locked/out"
+fi
+# A finished run: the same output directory again is refused, byte for byte unchanged.
+"$bin" run "$good" --planner constant --out "$tmp/done" --quiet >/dev/null 2>&1 || { echo "FAIL setup: run"; fail=1; }
+expect_error used_out_dir "result.json: already exists (use --force" "$tmp/done" -- run "$good" --planner nearest --out "$tmp/done"
+
+# ---------------------------------------------------------------- sweep files
+# sweep_file NAME JSON: writes $tmp/NAME.sweep.json ($good is "SCEN").
+sweep_file() { printf '%s' "${2//SCEN/$good}" >"$tmp/$1.sweep.json"; }
+sweep_error() {
+  expect_error "sweep_$1" "$2" "$tmp/sout_$1" -- sweep "$tmp/$1.sweep.json" --out "$tmp/sout_$1" -j1
+}
+sweep_file empty ''
+sweep_file broken '{"scenarios": ["SCEN"], "planners": ["constant"'
+head -c 48 /dev/urandom >"$tmp/garbage.sweep.json" 2>/dev/null || printf '\xff\xfe' >"$tmp/garbage.sweep.json"
+sweep_file unknown_top '{"scenarios": ["SCEN"], "planners": ["constant"], "budget": [1]}'
+sweep_file unknown_in_planner '{"scenarios": ["SCEN"], "planners": [{"name": "nearest", "parms": {}}]}'
+sweep_file unknown_planner '{"scenarios": ["SCEN"], "planners": ["constant", "octopus"]}'
+sweep_file unknown_param '{"scenarios": ["SCEN"], "planners": [{"name": "nearest", "params": {"spacing": 3}}]}'
+sweep_file bad_param '{"scenarios": ["SCEN"], "planners": [{"name": "nearest", "params": {"spacing_m": -1}}]}'
+sweep_file params_not_object '{"scenarios": ["SCEN"], "planners": [{"name": "nearest", "params": [1]}]}'
+sweep_file no_scenarios '{"planners": ["constant"]}'
+sweep_file missing_scenario '{"scenarios": ["nope.json"], "planners": ["constant"]}'
+sweep_file scenario_not_string '{"scenarios": [42], "planners": ["constant"]}'
+sweep_file empty_planners '{"scenarios": ["SCEN"], "planners": []}'
+sweep_file duplicate_label '{"scenarios": ["SCEN"], "planners": ["nearest", "nearest"]}'
+sweep_file negative_budget '{"scenarios": ["SCEN"], "planners": ["constant"], "budgets": [1, -2]}'
+sweep_file budgets_not_array '{"scenarios": ["SCEN"], "planners": ["constant"], "budgets": 1}'
+sweep_file empty_budgets '{"scenarios": ["SCEN"], "planners": ["constant"], "budgets": []}'
+sweep_file huge_fps '{"scenarios": ["SCEN"], "planners": ["constant"], "fps": [1e9]}'
+sweep_file huge_duration '{"scenarios": ["SCEN"], "planners": ["constant"], "duration_s": 1e12}'
+sweep_file too_many_frames '{"scenarios": ["SCEN"], "planners": ["constant"], "fps": [30, 5000], "duration_s": 3600}'
+sweep_file fractional_seed '{"scenarios": ["SCEN"], "planners": ["constant"], "seeds": [1.5]}'
+sweep_file override_unknown '{"scenarios": ["SCEN"], "planners": ["constant"], "overrides": {"/camera/sped_mps": 3}}'
+sweep_file override_out_of_range '{"scenarios": ["SCEN"], "planners": ["constant"], "overrides": {"/budget/face_size": 1000000}}'
+sweep_file override_through_number '{"scenarios": ["SCEN"], "planners": ["constant"], "overrides": {"/world/seed/x": 1}}'
+sweep_file beyond_road '{"scenarios": ["SCEN"], "planners": ["constant"], "overrides": {"/camera/start_arc_length_m": 1e9}}'
+
+expect_error sweep_missing "nope.sweep.json: no such file" "$tmp/sout_missing" -- sweep "$tmp/nope.sweep.json" --out "$tmp/sout_missing"
+expect_error sweep_directory "is a directory" "$tmp/sout_directory" -- sweep "$tmp" --out "$tmp/sout_directory"
+sweep_error empty "empty.sweep.json: is empty"
+sweep_error broken "broken.sweep.json: invalid JSON at line 1"
+sweep_error garbage "garbage.sweep.json: "
+sweep_error unknown_top "unknown_top.sweep.json: /budget: unknown key"
+sweep_error unknown_in_planner "unknown_in_planner.sweep.json: /planners/0/parms: unknown key"
+sweep_error unknown_planner "unknown_planner.sweep.json: /planners/1: unknown planner \"octopus\"; valid planners: oracle"
+sweep_error unknown_param "unknown_param.sweep.json: /planners/0/params/spacing"
+sweep_error bad_param "bad_param.sweep.json: /planners/0/params/spacing_m"
+sweep_error params_not_object "params_not_object.sweep.json: /planners/0/params: must be an object"
+sweep_error no_scenarios "no_scenarios.sweep.json: /scenarios: required list of scenario files is missing"
+sweep_error missing_scenario "missing_scenario.sweep.json: /scenarios/0: no such file"
+sweep_error scenario_not_string "scenario_not_string.sweep.json: /scenarios/0: must be a file path string"
+sweep_error empty_planners "empty_planners.sweep.json: /planners: must be a non-empty array"
+sweep_error duplicate_label "duplicate_label.sweep.json: /planners/1: duplicate planner label"
+sweep_error negative_budget "negative_budget.sweep.json: /budgets/1: must be >= 0, got -2"
+sweep_error budgets_not_array "budgets_not_array.sweep.json: /budgets: must be an array of numbers"
+sweep_error empty_budgets "empty_budgets.sweep.json: /budgets: must not be empty"
+sweep_error huge_fps "huge_fps.sweep.json: /fps/0: must be <= 10000"
+sweep_error huge_duration "huge_duration.sweep.json: /duration_s: must be <= 86400"
+sweep_error too_many_frames "too_many_frames.sweep.json: /duration_s: with fps 5000 gives 18000000 frames"
+sweep_error fractional_seed "fractional_seed.sweep.json: /seeds: seeds must be whole numbers"
+sweep_error override_unknown "small_drive.json: /camera/sped_mps: unknown key"
+sweep_error override_out_of_range "small_drive.json: /budget/face_size: must be <= 1024"
+sweep_error override_through_number "override_through_number.sweep.json: /world/seed: is not an object"
+sweep_error beyond_road "small_drive.json: /camera/start_arc_length_m: is beyond the end of the road"
+sweep_file tiny '{"scenarios": ["SCEN"], "planners": ["constant"], "duration_s": 0.5}'
+expect_error sweep_bad_shard "--shard: expects K/N" "$tmp/sout_bad_shard" -- sweep "$tmp/tiny.sweep.json" --out "$tmp/sout_bad_shard" --shard 3/2
+expect_error sweep_bad_jobs "--jobs" "$tmp/sout_bad_jobs" -- sweep "$tmp/tiny.sweep.json" --out "$tmp/sout_bad_jobs" -j 0
+expect_error sweep_out_under_file "a_file" "$tmp/a_file" -- sweep "$tmp/tiny.sweep.json" --out "$tmp/a_file/sub"
+if [ "$as_root" -eq 1 ]; then
+  skip sweep_unwritable_out "running as root: chmod 555 does not stop root from writing"
+else
+  expect_error sweep_unwritable_out "cannot create output directory" "$tmp/locked/sweep" -- sweep "$tmp/tiny.sweep.json" --out "$tmp/locked/sweep"
+fi
+# A finished sweep: running it again into the same directory is refused, unchanged.
+"$bin" sweep "$tmp/tiny.sweep.json" --out "$tmp/swept" -j1 >/dev/null 2>&1 || { echo "FAIL setup: sweep"; fail=1; }
+expect_error sweep_used_out_dir "result.json: already exists (use --resume" "$tmp/swept" -- sweep "$tmp/tiny.sweep.json" --out "$tmp/swept" -j1
+
+# ---------------------------------------------------------------- world and probe
+world_only() { printf '%s' "$2" >"$tmp/$1.world.json"; }
+world_only bad_world_key '{"world": {"terrain": {"roughnes": 0.5}}}'
+world_only no_world '{"camera": {}}'
+world_only huge_world '{"world": {"size_m": [1e9, 1e9]}}'
+expect_error world_unknown_key "bad_world_key.world.json: /world/terrain/roughnes: unknown key" "$tmp/w1.png" -- world "$tmp/bad_world_key.world.json" --png "$tmp/w1.png"
+expect_error world_missing_section "no_world.world.json: /world: required object is missing" "$tmp/w2.png" -- world "$tmp/no_world.world.json" --png "$tmp/w2.png"
+expect_error world_huge "huge_world.world.json: /world/size_m/0: must be <= 65536" "$tmp/w3.png" -- world "$tmp/huge_world.world.json" --png "$tmp/w3.png"
+expect_error world_garbage "garbage.json: " "$tmp/w4.png" -- world "$tmp/garbage.json" --png "$tmp/w4.png"
+expect_error world_missing_dir "nodir/w.png: directory does not exist" "$tmp/nodir" -- world "$good" --png "$tmp/nodir/w.png"
+expect_error world_bad_size "--size" "$tmp/w5.png" -- world "$good" --png "$tmp/w5.png" --size 100000
+printf 'not a png' >"$tmp/existing.png"
+mkdir -p "$tmp/pngdir" && cp "$tmp/existing.png" "$tmp/pngdir/"
+expect_error world_existing_png "existing.png: already exists (use --force" "$tmp/pngdir" -- world "$good" --png "$tmp/pngdir/existing.png"
+expect_error probe_unknown_key "bad_world_key.world.json: /world/terrain/roughnes: unknown key" "$tmp/c1.png" -- probe "$tmp/bad_world_key.world.json" --at 10,10,2 --cube "$tmp/c1.png"
+expect_error probe_nan "--at: coordinates must be finite" "$tmp/c2.png" -- probe "$good" --at nan,10,2 --cube "$tmp/c2.png"
+expect_error probe_huge "--at: coordinates must be finite and within" "$tmp/c3.png" -- probe "$good" --at 1e300,10,2 --cube "$tmp/c3.png"
+expect_error probe_two_coords "--at: expects X,Y,Z" "$tmp/c4.png" -- probe "$good" --at 10,10 --cube "$tmp/c4.png"
+expect_error probe_zero_size "--size" "$tmp/c5.png" -- probe "$good" --at 10,10,2 --size 0 --cube "$tmp/c5.png"
+expect_error probe_existing_cube "existing.png: already exists (use --force" "$tmp/pngdir" -- probe "$good" --at 10,10,2 --cube "$tmp/pngdir/existing.png"
+
+# ---------------------------------------------------------------- plot and viz
+expect_error plot_not_dir "a_file: not a directory" "$tmp/a_file" -- plot "$tmp/a_file"
+expect_error plot_not_sweep "summary.csv: missing: not a sweep output directory" "$tmp/pngdir" -- plot "$tmp/pngdir"
+expect_error viz_not_dir "a_file: not a directory" "$tmp/a_file" -- viz "$tmp/a_file"
+expect_error viz_not_run "views.json: missing: not a run output directory" "$tmp/pngdir" -- viz "$tmp/pngdir"
+run_dir="$(ls -d "$tmp"/swept/runs/*/ 2>/dev/null | head -1)"
+if [ -n "$run_dir" ] && "$bin" plot "$tmp/swept" >/dev/null 2>&1; then
+  expect_error plot_unknown_run "unknown run id 'nope'" "$tmp/swept" -- plot "$tmp/swept" --run nope --force
+  expect_error plot_existing_charts "already exists (use --force" "$tmp/swept" -- plot "$tmp/swept"
+else
+  echo "FAIL setup: plot of a finished sweep"
+  fail=1
+fi
+if [ -n "$run_dir" ] && "$bin" viz "${run_dir%/}" --frames 0 >/dev/null 2>&1; then
+  expect_error viz_existing_views "already exists (use --force" "$tmp/swept" -- viz "${run_dir%/}" --frames 0
+else
+  echo "FAIL setup: viz of a finished run"
+  fail=1
+fi
+
+echo "$cases cases, $skipped skipped"
 exit $fail
