@@ -1,30 +1,31 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds into build/, and runs every test (ctest). The VTK tests
-# render, so the whole suite runs under a virtual X server. Then builds the unit tests again
-# in build-asan/ with AddressSanitizer + UndefinedBehaviorSanitizer (no VTK, no benchmarks)
-# and runs them there; any sanitizer report fails the script. AMBISIM_SANITIZER_PASS=0 skips
-# that second pass (e.g. for a quick local run).
+# Installs what is missing and runs every test:
+#  1. the unit tests built again in build-asan/ with AddressSanitizer + UndefinedBehaviorSanitizer
+#     (no VTK, no benchmarks); any sanitizer report fails the script. AMBISIM_SANITIZER_PASS=0
+#     skips this pass (e.g. for a quick local run);
+#  2. the Release build in build/ and the whole suite through ctest, under a virtual X server
+#     because the VTK tests render. ctest's summary is the last thing printed.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 ambisim_setup
 jobs="$(nproc 2>/dev/null || echo 2)"
-(
-  cd "$AMBISIM_BUILD"
-  xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --output-on-failure -j "$jobs" "$@"
-)
 
-[ "${AMBISIM_SANITIZER_PASS:-1}" = "0" ] && exit 0
-# -O1 keeps the sanitized tests fast enough; assertions stay on (no NDEBUG).
-asan="$AMBISIM_ROOT/build-asan"
-cmake -S "$AMBISIM_ROOT" -B "$asan" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DAMBISIM_SANITIZE=ON -DAMBISIM_WITH_VIZ=OFF \
-  -DAMBISIM_WITH_BENCH=OFF >/dev/null
-cmake --build "$asan" -j "$jobs" --target test_sim test_policies
-# Leak checking works here (LeakSanitizer needs ptrace-like access to stop the process; it is
-# on by default on Linux and set explicitly so that a restricted environment fails loudly).
-export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1"
-export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
-echo "sanitizer pass (ASan + UBSan): test_sim, test_policies" >&2
-# Catch2 skips hidden tests ([.slow] and the like) unless asked for.
-"$asan/tests/test_sim"
-"$asan/tests/test_policies"
+if [ "${AMBISIM_SANITIZER_PASS:-1}" != "0" ]; then
+  # -O1 keeps the sanitized tests fast enough; assertions stay on (no NDEBUG).
+  asan="$AMBISIM_ROOT/build-asan"
+  cmake -S "$AMBISIM_ROOT" -B "$asan" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DAMBISIM_SANITIZE=ON -DAMBISIM_WITH_VIZ=OFF \
+    -DAMBISIM_WITH_BENCH=OFF >/dev/null
+  cmake --build "$asan" -j "$jobs" --target test_sim test_policies
+  # Leak checks on, explicitly, so that a restricted environment fails loudly.
+  export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1"
+  export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+  echo "sanitizer pass (ASan + UBSan): test_sim, test_policies" >&2
+  # Catch2 skips hidden tests ([.slow] and the like) unless asked for.
+  "$asan/tests/test_sim"
+  "$asan/tests/test_policies"
+  unset ASAN_OPTIONS UBSAN_OPTIONS
+fi
+
+cd "$AMBISIM_BUILD"
+xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --output-on-failure -j "$jobs" "$@"
