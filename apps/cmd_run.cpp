@@ -34,10 +34,15 @@ void run_run(const RunOptions& o) {
   const PlannerParams params = planner_params_from_cli(o.planner, o.set);
   auto planner = make_planner(o.planner, params);
   namespace fs = std::filesystem;
-  if (fs::exists(o.out) && !fs::is_directory(o.out)) {
+  std::error_code ec;
+  const auto status = fs::status(o.out, ec);
+  if (ec && ec != std::errc::no_such_file_or_directory && ec != std::errc::not_a_directory) {
+    throw InputError(o.out, "", "cannot be used as the output directory: " + ec.message());
+  }
+  if (fs::exists(status) && !fs::is_directory(status)) {
     throw InputError(o.out, "", "exists and is not a directory");
   }
-  if (fs::exists(o.out)) {
+  if (fs::exists(status)) {
     check_output_path((fs::path(o.out) / "result.json").string(), ow);
     check_output_path((fs::path(o.out) / "frames.csv").string(), ow);
     check_output_path((fs::path(o.out) / "views.json").string(), ow);

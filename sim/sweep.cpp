@@ -25,6 +25,15 @@ namespace ambisim {
 namespace fs = std::filesystem;
 namespace {
 
+constexpr const char* kComponentRule =
+    "must be 1..100 characters without '/' or '\\', and not \".\" or \"..\"";
+
+// Scenario names and planner labels become directory names under runs/.
+bool safe_path_component(const std::string& s) {
+  return !s.empty() && s.size() <= 100 && s != "." && s != ".." &&
+         s.find_first_of("/\\") == std::string::npos && s.find('\0') == std::string::npos;
+}
+
 std::string number_text(double x) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%g", x);
@@ -124,8 +133,10 @@ SweepSpec parse_sweep(const nlohmann::json& doc, const std::string& path) {
       throw InputError(path, "/scenarios/" + std::to_string(i), "must be a file path string");
     }
     const fs::path p = base / e.get<std::string>();
-    if (!fs::is_regular_file(p)) {
-      throw InputError(path, "/scenarios/" + std::to_string(i), "no such file: " + p.string());
+    std::error_code ec;  // e.g. a name too long for the file system: not a crash
+    if (!fs::is_regular_file(p, ec)) {
+      throw InputError(path, "/scenarios/" + std::to_string(i),
+                       "no such file: " + p.string() + (ec ? " (" + ec.message() + ")" : ""));
     }
     s.scenarios.push_back(p.lexically_normal().string());
   }
@@ -144,6 +155,10 @@ SweepSpec parse_sweep(const nlohmann::json& doc, const std::string& path) {
       ObjectReader pr(e, path, at);
       p.name = pr.string("name");
       p.label = pr.string("label", "");
+      // The label names the run directories: it must be one path component.
+      if (!p.label.empty() && !safe_path_component(p.label)) {
+        pr.fail("label", kComponentRule);
+      }
       const nlohmann::json* params = pr.raw("params");
       p.params = params ? *params : nlohmann::json::object();
       if (!p.params.is_object()) throw InputError(path, at + "/params", "must be an object");
@@ -214,6 +229,10 @@ std::vector<RunSpec> expand_sweep(const SweepSpec& spec) {
           for (double b : spec.budgets) {
             set_json_path(doc, "/budget/faces_per_frame", b, file);
             const Scenario variant = parse_scenario(doc, file);
+            if (!safe_path_component(variant.name)) {
+              throw InputError(file, "/name",
+                               std::string("names the run directories: ") + kComponentRule);
+            }
             for (const auto& p : spec.planners) {
               RunSpec r;
               r.index = runs.size();

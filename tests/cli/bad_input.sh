@@ -183,7 +183,9 @@ expect_error set_without_value "--set spacing_m: expected key=value" "$tmp/out_s
 expect_error missing_out "--out is required" "$tmp/out_missing_out" -- run "$good"
 
 # ---------------------------------------------------------------- output paths
+long="$(printf 'a%.0s' $(seq 1 300))"  # longer than a file name may be (255)
 printf 'x' >"$tmp/a_file"
+expect_error out_name_too_long "cannot be used as the output directory: File name too long" "$tmp/out_name_too_long" -- run "$good" --planner constant --out "$tmp/$long"
 expect_error out_is_file "a_file: exists and is not a directory" "$tmp/a_file" -- run "$good" --planner constant --out "$tmp/a_file"
 expect_error out_under_file "cannot be created: $tmp/a_file is not a directory" "$tmp/a_file" -- run "$good" --planner constant --out "$tmp/a_file/sub"
 if [ "$as_root" -eq 1 ]; then
@@ -229,6 +231,9 @@ sweep_file fractional_seed '{"scenarios": ["SCEN"], "planners": ["constant"], "s
 sweep_file override_unknown '{"scenarios": ["SCEN"], "planners": ["constant"], "overrides": {"/camera/sped_mps": 3}}'
 sweep_file override_out_of_range '{"scenarios": ["SCEN"], "planners": ["constant"], "overrides": {"/budget/face_size": 1000000}}'
 sweep_file override_through_number '{"scenarios": ["SCEN"], "planners": ["constant"], "overrides": {"/world/seed/x": 1}}'
+sweep_file long_scenario_path "{\"scenarios\": [\"$long.json\"], \"planners\": [\"constant\"]}"
+sweep_file label_with_slash '{"scenarios": ["SCEN"], "planners": [{"name": "constant", "label": "../../escape"}]}'
+sweep_file name_with_slash '{"scenarios": ["SCEN"], "planners": ["constant"], "overrides": {"/name": "../../escape"}}'
 sweep_file beyond_road '{"scenarios": ["SCEN"], "planners": ["constant"], "overrides": {"/camera/start_arc_length_m": 1e9}}'
 
 expect_error sweep_missing "nope.sweep.json: no such file" "$tmp/sout_missing" -- sweep "$tmp/nope.sweep.json" --out "$tmp/sout_missing"
@@ -257,6 +262,9 @@ sweep_error fractional_seed "fractional_seed.sweep.json: /seeds: seeds must be w
 sweep_error override_unknown "small_drive.json: /camera/sped_mps: unknown key"
 sweep_error override_out_of_range "small_drive.json: /budget/face_size: must be <= 1024"
 sweep_error override_through_number "override_through_number.sweep.json: /world/seed: is not an object"
+sweep_error long_scenario_path "long_scenario_path.sweep.json: /scenarios/0: no such file"
+sweep_error label_with_slash "label_with_slash.sweep.json: /planners/0/label: must be 1..100 characters without '/'"
+sweep_error name_with_slash "small_drive.json: /name: names the run directories"
 sweep_error beyond_road "small_drive.json: /camera/start_arc_length_m: is beyond the end of the road"
 sweep_file tiny '{"scenarios": ["SCEN"], "planners": ["constant"], "duration_s": 0.5}'
 expect_error sweep_bad_shard "--shard: expects K/N" "$tmp/sout_bad_shard" -- sweep "$tmp/tiny.sweep.json" --out "$tmp/sout_bad_shard" --shard 3/2

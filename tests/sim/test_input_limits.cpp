@@ -167,4 +167,22 @@ TEST_CASE("sweep files are parsed from memory and checked", "[scenario][sweep]")
              Catch::Matchers::Contains("/duration_s: with fps 5000 gives 18000000 frames"));
   CHECK_THAT(sweep_error(R"({"scenarios": ["nope.json"], "planners": ["constant"]})"),
              Catch::Matchers::Contains("/scenarios/0: no such file"));
+  CHECK_THAT(sweep_error(R"({"scenarios": ["../walk.json"],
+                             "planners": [{"name": "constant", "label": "../../x"}]})"),
+             Catch::Matchers::Contains("/planners/0/label: must be 1..100 characters"));
+}
+
+TEST_CASE("fuzz finding: a scenario path too long for the file system", "[scenario][sweep]") {
+  // fuzz_sweep: std::filesystem::is_regular_file threw filesystem_error (ENAMETOOLONG) out of
+  // parse_sweep, which the CLI reported as an internal error (exit 1).
+  const std::string file = std::string(AMBISIM_SOURCE_DIR) + "/scenarios/sweeps/x.json";
+  json doc = json::parse(R"({"planners": ["constant"]})");
+  doc["scenarios"] = {std::string(600, '[') + ".json"};
+  std::string message = "no error";
+  try {
+    (void)ambisim::parse_sweep(doc, file);
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  CHECK_THAT(message, Catch::Matchers::Contains("/scenarios/0: no such file"));
 }
