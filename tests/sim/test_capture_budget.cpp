@@ -1,6 +1,6 @@
 // Capture budget: fractional accumulation patterns, the carry-over cap, counters.
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 
 #include "sim/capture_budget.h"
 

@@ -1,7 +1,7 @@
 // Cube-map to SH projection: fast table path vs the double reference, round trips, and the
 // thesis' uniform texel weight as a measured error source.
-#include <catch2/catch.hpp>
 #include <array>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
 #include <set>
