@@ -300,43 +300,23 @@ SweepReport run_sweep(const SweepSpec& spec, const std::string& out_dir,
   }
 
   // Shared inputs: one World per world description, one reference per scenario variant.
-  std::mutex mutex;
-  std::map<std::string, std::shared_future<std::shared_ptr<const World>>> worlds;
   // The worlds are built now, one after the other, so that every run to do is checked against
-  // its world (the road's length) before anything is written.
+  // its world (the road's length) before anything is written; after this the map is only read.
+  auto world_key = [](const Scenario& sc) {
+    return sc.document.value("world", nlohmann::json::object()).dump();
+  };
+  std::map<std::string, std::shared_ptr<const World>> worlds;
   for (const RunSpec* r : todo) {
-    const std::string key = r->scenario.document.value("world", nlohmann::json::object()).dump();
-    auto it = worlds.find(key);
-    if (it == worlds.end()) {
-      std::promise<std::shared_ptr<const World>> built;
-      built.set_value(std::make_shared<const World>(r->scenario.world));
-      it = worlds.emplace(key, built.get_future().share()).first;
-    }
-    check_scenario_world(r->scenario, *it->second.get());
+    auto& world = worlds[world_key(r->scenario)];
+    if (!world) world = std::make_shared<const World>(r->scenario.world);
+    check_scenario_world(r->scenario, *world);
   }
   std::error_code ec;
   fs::create_directories(runs_dir, ec);
   if (ec) throw InputError(out_dir, "", "cannot create output directory: " + ec.message());
   std::map<std::uint64_t, std::shared_future<std::shared_ptr<const ReferenceTrack>>> references;
-  auto world_for = [&](const Scenario& sc) {
-    const std::string key = sc.document.value("world", nlohmann::json::object()).dump();
-    std::promise<std::shared_ptr<const World>> promise;
-    std::shared_future<std::shared_ptr<const World>> future;
-    bool mine_to_build = false;
-    {
-      std::lock_guard lock(mutex);
-      auto it = worlds.find(key);
-      if (it == worlds.end()) {
-        future = promise.get_future().share();
-        worlds.emplace(key, future);
-        mine_to_build = true;
-      } else {
-        future = it->second;
-      }
-    }
-    if (mine_to_build) promise.set_value(std::make_shared<const World>(sc.world));
-    return future.get();
-  };
+  // References are computed lazily by the first worker that needs one; the others wait for it.
+  std::mutex mutex;
   auto reference_for = [&](const Scenario& sc, const World& world) {
     std::promise<std::shared_ptr<const ReferenceTrack>> promise;
     std::shared_future<std::shared_ptr<const ReferenceTrack>> future;
@@ -352,7 +332,13 @@ SweepReport run_sweep(const SweepSpec& spec, const std::string& out_dir,
         future = it->second;
       }
     }
-    if (mine_to_build) promise.set_value(compute_reference_track(sc, world));
+    if (mine_to_build) {
+      try {
+        promise.set_value(compute_reference_track(sc, world));
+      } catch (...) {
+        promise.set_exception(std::current_exception());  // waiters see the same error
+      }
+    }
     return future.get();
   };
 
@@ -372,7 +358,7 @@ SweepReport run_sweep(const SweepSpec& spec, const std::string& out_dir,
       if (k >= todo.size()) return;
       const RunSpec& r = *todo[k];
       try {
-        const auto world = world_for(r.scenario);
+        const World* world = worlds.at(world_key(r.scenario)).get();
         const auto reference = reference_for(r.scenario, *world);
         auto planner = factory(r.planner);
         const RunResult result = simulate(r.scenario, *world, *reference, *planner);
