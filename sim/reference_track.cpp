@@ -127,6 +127,21 @@ std::shared_ptr<const ReferenceTrack> compute_reference_track(const Scenario& sc
     }
     return false;
   };
+  // A midpoint the linear interpolation of its interval's ends predicts to within refine_de
+  // (at every normal) shows the change is smooth there: its halves are interpolated, not
+  // captured again.
+  auto mispredicted = [&](const Sample& a, const Sample& m, const Sample& b) {
+    const float f = static_cast<float>((m.time - a.time) / (b.time - a.time));
+    for (std::size_t n = 0; n < nn; ++n) {
+      const Rgb& e0 = track->irradiance[a.slot * nn + n];
+      const Rgb& e1 = track->irradiance[b.slot * nn + n];
+      if (display_difference(e0 + f * (e1 - e0), track->irradiance[m.slot * nn + n],
+                             track->exposure) > scenario.reference.refine_de) {
+        return true;
+      }
+    }
+    return false;
+  };
   for (auto& [id, samples] : by_receiver) {
     std::vector<std::size_t>& keys = keys_of[id];
     std::vector<std::size_t> refined;
@@ -142,6 +157,7 @@ std::shared_ptr<const ReferenceTrack> compute_reference_track(const Scenario& sc
         const std::size_t mid = lo + (hi - lo) / 2;
         store(samples[mid]);
         added.push_back(mid);
+        if (!mispredicted(samples[lo], samples[mid], samples[hi])) continue;
         stack.push_back({lo, mid});
         stack.push_back({mid, hi});
       }

@@ -7,8 +7,9 @@
 //
 // Cost control (ReferenceSettings): a static receiver is captured once; with interval_s > 0 a
 // moving receiver is captured on a time grid (the first frame in each interval, and its last
-// frame) and interpolated linearly in time between those keys. tests/sim/test_reference_track
-// measures what that shortcut costs in CIEDE2000.
+// frame), refined where the displayed colour changes abruptly between keys, and interpolated
+// linearly in time between keys. tests/sim/test_reference_track measures what that shortcut
+// costs in CIEDE2000.
 #include <array>
 #include <cstdint>
 #include <map>

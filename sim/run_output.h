@@ -14,6 +14,10 @@
 namespace ambisim {
 
 inline constexpr int kResultFormatVersion = 1;
+// The results' model: bump it whenever the same inputs give different results (the reference,
+// a metric, a planner's behaviour), so that `sweep --resume` recomputes runs instead of mixing
+// old and new numbers. 2: the reference stops refining where interpolation predicts well.
+inline constexpr int kResultsModelVersion = 2;
 
 struct RunIdentity {
   std::string planner;

@@ -21,8 +21,9 @@ struct ReferenceSettings {
   int face_size = 24;       // cube face resolution of reference captures at receivers
   double interval_s = 0.0;  // 0: every frame; > 0: moving receivers sampled on this time grid
                             // and interpolated linearly in time between samples
-  double refine_de = 0.25;  // with interval_s > 0: a frame between two samples is captured too
-                            // (recursively) while their displayed colours differ by more
+  double refine_de = 0.25;  // with interval_s > 0: a frame between two samples that differ by
+                            // more is captured too, and its halves refined while linear
+                            // interpolation mispredicts it by more (dE00)
 };
 
 struct Scenario {

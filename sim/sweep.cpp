@@ -87,6 +87,7 @@ void flatten(const nlohmann::ordered_json& j, const std::string& prefix,
 
 std::uint64_t run_hash_of(const Scenario& sc, const SweepPlanner& p) {
   ContentHasher h;
+  h.add_value(static_cast<std::uint64_t>(kResultsModelVersion));
   const std::uint64_t sh = sc.hash();
   h.add_value(sh);
   h.add_bytes(p.name.data(), p.name.size());

@@ -33,7 +33,10 @@ TEST_CASE("time-grid reference with adaptive refinement stays within 0.5 dE00 of
   for (std::size_t i = 0; i < a->irradiance.size(); ++i) {
     worst = std::max(worst, display_difference(a->irradiance[i], b->irradiance[i], a->exposure));
   }
-  // Measured: 0.17 dE00 worst case with refine_de 0.25.
+  // Measured: 0.34 dE00 worst case with refine_de 0.25, 152 of 255 captures (before the
+  // midpoint test stopped refining smooth stretches: 0.32 with 181 captures). On 20 s of the
+  // motorway and the forest edge the planners' dE00 mean/p95 match the every-frame reference
+  // to 0.01 and their pops/min to 2-5 %.)
   CHECK(worst < kShortcutToleranceDe);
 }
 
