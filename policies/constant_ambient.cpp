@@ -2,6 +2,8 @@
 
 #include <limits>
 
+#include "policies/default_ambient.h"
+
 namespace ambisim {
 namespace {
 
@@ -34,8 +36,10 @@ PlannerInfo ConstantAmbientPlanner::constant_info() {
 }
 
 PlannerInfo ConstantAmbientPlanner::hemisphere_info() {
-  std::vector<ParamSpec> specs = rgb_params("sky", 1.0, "the default upper hemisphere");
-  for (auto& s : rgb_params("ground", 0.25, "the default lower hemisphere")) specs.push_back(s);
+  std::vector<ParamSpec> specs =
+      rgb_params("sky", kDefaultSkyRadiance, "the default upper hemisphere");
+  for (auto& s : rgb_params("ground", kDefaultGroundRadiance, "the default lower hemisphere"))
+    specs.push_back(s);
   return {"hemisphere", "hemisphere ambient (thesis 10.1.2): L00 + L10 of one capture at the start",
           specs, [](const PlannerParams& p) {
             return std::make_unique<ConstantAmbientPlanner>(Mode::hemisphere, p);
@@ -50,9 +54,7 @@ ConstantAmbientPlanner::ConstantAmbientPlanner(Mode mode, const PlannerParams& p
   if (mode_ == Mode::constant) {
     fallback_.c[0] = read_rgb(params_, "colour") * static_cast<float>(y0);
   } else {
-    const Rgb a = read_rgb(params_, "sky"), b = read_rgb(params_, "ground");
-    fallback_.c[0] = (a + b) * static_cast<float>(y0 / 2.0);
-    fallback_.c[2] = (a - b) * static_cast<float>(kPi * kShY1);
+    fallback_ = hemisphere_sh(read_rgb(params_, "sky"), read_rgb(params_, "ground"));
   }
 }
 

@@ -6,6 +6,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "policies/default_ambient.h"
+
 namespace ambisim {
 namespace {
 
@@ -98,7 +100,7 @@ void NearestProbePlanner::deliver(const FinishedProbe& probe) {
   q.sh = probe.sh;
   q.data_time = probe.requested_time;
   // What lookups here returned just before: the value to fade from (none for the first probe:
-  // fading in from black would be a pop of its own).
+  // it replaces the default ambient, which is no data to average with).
   const LookupResult before = lookup(probe.position);
   if (!before.fell_back && blend_s_ > 0.0) {
     q.fading = true;
@@ -146,11 +148,7 @@ LookupResult NearestProbePlanner::lookup(const glm::dvec3& p) const {
   LookupResult r;
   double d = 0.0;
   const auto i = nearest(p, &d);
-  if (!i) {
-    r.fell_back = true;
-    r.spacing_m = std::numeric_limits<double>::infinity();
-    return r;  // black
-  }
+  if (!i) return default_ambient_lookup();
   const Probe& q = probes_[*i];
   const float w = fade_weight(q);
   r.spacing_m = d;

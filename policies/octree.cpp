@@ -7,6 +7,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "policies/default_ambient.h"
+
 namespace ambisim {
 namespace {
 
@@ -376,12 +378,7 @@ void OctreePlanner::prune() {
 }
 
 LookupResult OctreePlanner::lookup(const glm::dvec3& p) const {
-  if (!root_ready_ || !lattice_.contains(p)) {
-    LookupResult r;
-    r.fell_back = true;
-    r.spacing_m = std::numeric_limits<double>::infinity();
-    return r;
-  }
+  if (!root_ready_ || !lattice_.contains(p)) return default_ambient_lookup();
   return lookup_mode_ == Lookup::octant ? lookup_octant(p) : lookup_trilinear(p);
 }
 
@@ -405,12 +402,7 @@ struct Blend {
     time += w * data_time;
   }
   LookupResult finish(double spacing, bool fell_back) {
-    if (total <= 0.0) {
-      LookupResult none;
-      none.fell_back = true;
-      none.spacing_m = std::numeric_limits<double>::infinity();
-      return none;
-    }
+    if (total <= 0.0) return default_ambient_lookup();
     if (std::abs(total - 1.0) > 1e-12) {
       r.sh *= static_cast<float>(1.0 / total);
       for (int i = 0; i < r.contributor_count; ++i) {

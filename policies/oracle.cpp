@@ -4,6 +4,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "policies/default_ambient.h"
+
 namespace ambisim {
 
 PlannerInfo OraclePlanner::info() {
@@ -60,11 +62,7 @@ LookupResult OraclePlanner::lookup(const glm::dvec3& p) const {
       }
     }
   }
-  if (!best) {
-    r.fell_back = true;
-    r.spacing_m = std::numeric_limits<double>::infinity();
-    return r;
-  }
+  if (!best) return default_ambient_lookup();
   r.sh = best->sh;
   r.contributors[0] = {best->tag, 1.0f};
   r.contributor_count = 1;

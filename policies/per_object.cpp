@@ -5,6 +5,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "policies/default_ambient.h"
+
 namespace ambisim {
 namespace {
 
@@ -137,11 +139,7 @@ LookupResult PerObjectPlanner::lookup(const glm::dvec3& p) const {
       }
     }
   }
-  if (best == nullptr) {
-    r.fell_back = true;
-    r.spacing_m = std::numeric_limits<double>::infinity();
-    return r;  // black
-  }
+  if (best == nullptr) return default_ambient_lookup();
   r.sh = best->sh;
   r.contributors[0] = {best->tag, 1.0f};
   r.contributor_count = 1;

@@ -6,6 +6,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "policies/default_ambient.h"
+
 namespace ambisim {
 namespace {
 
@@ -252,7 +254,7 @@ LookupResult ScrollingGridPlanner::nearest_fallback(const glm::dvec3& p) const {
       best = &q;
     }
   }
-  if (best == nullptr) return r;  // black
+  if (best == nullptr) return default_ambient_lookup();
   r.sh = value_of(*best);
   r.contributors[0] = {best->tag, 1.0f};
   r.contributor_count = 1;
@@ -265,7 +267,7 @@ LookupResult ScrollingGridPlanner::lookup(const glm::dvec3& p) const {
   LookupResult r;
   r.fell_back = true;
   r.spacing_m = std::numeric_limits<double>::infinity();
-  if (probes_.empty()) return r;
+  if (probes_.empty()) return default_ambient_lookup();
 
   // Lattice coordinates, clamped to the window's box.
   const std::array<double, 3> cell{spacing_m_, spacing_m_, vertical_spacing_m_};
@@ -281,7 +283,7 @@ LookupResult ScrollingGridPlanner::lookup(const glm::dvec3& p) const {
     f[a] = std::clamp(u[a] - static_cast<double>(i0[a]), 0.0, 1.0);
   }
   const double outside = glm::length(p - clamped);
-  if (!std::isfinite(outside)) return r;
+  if (!std::isfinite(outside)) return default_ambient_lookup();
 
   struct Corner {
     const Probe* probe;

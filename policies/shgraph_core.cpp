@@ -9,6 +9,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "policies/default_ambient.h"
+
 namespace ambisim {
 namespace {
 
@@ -687,11 +689,7 @@ void ShGraphCore<Dim>::update(const FrameContext& ctx) {
 template <int Dim>
 LookupResult ShGraphCore<Dim>::lookup(const glm::dvec3& p) const {
   LookupResult r;
-  if (nodes_.empty()) {
-    r.fell_back = true;
-    r.spacing_m = kInf;
-    return r;
-  }
+  if (nodes_.empty()) return default_ambient_lookup();
   const Q q = to_q(p);
   const bool outside = !contains(0, q);
   std::array<std::int32_t, kMaxLevels> path;
@@ -748,11 +746,7 @@ LookupResult ShGraphCore<Dim>::lookup(const glm::dvec3& p) const {
       break;
     }
   }
-  if (!have) {
-    r.fell_back = true;
-    r.spacing_m = kInf;
-    return r;
-  }
+  if (!have) return default_ambient_lookup();
   const double cell = cell_size(chosen_depth);
   const double eps_q = 1e-3 * cell / h_;
   std::array<double, kOctants> w{};

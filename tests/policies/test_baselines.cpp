@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "policies/default_ambient.h"
 #include "policies/registry.h"
 #include "sim/planner.h"
 #include "sim/sh9.h"
@@ -54,10 +55,10 @@ std::unique_ptr<Planner> nearest_with(const std::vector<std::string>& sets) {
 TEST_CASE("oracle returns exactly the probe delivered at each receiver", "[policies]") {
   auto p = make_planner("oracle");
   REQUIRE(p->ignores_budget());
-  // Before any delivery: black, fell back.
+  // Before any delivery: the default ambient, fell back.
   LookupResult none = p->lookup({0, 0, 0});
   CHECK(none.fell_back);
-  CHECK(none.sh == Sh9Rgb{});
+  CHECK(none.sh == default_ambient_sh());
 
   const glm::dvec3 a{1.0, 2.0, 3.0}, b{10.0, 2.0, 3.0};
   p->set_receivers({{7, a, {0, 0, 0}}, {8, b, {0, 0, 0}}});
@@ -186,9 +187,9 @@ TEST_CASE("nearest requests at the camera only beyond spacing_m, one at a time",
   auto p = make_planner("nearest");  // spacing 8 m
   const double dt = 1.0 / 30.0;
   std::int64_t f = 0;
-  // Before any probe: black, fell back.
+  // Before any probe: the default ambient, fell back.
   CHECK(p->lookup({0, 0, 0}).fell_back);
-  CHECK(p->lookup({0, 0, 0}).sh == Sh9Rgb{});
+  CHECK(p->lookup({0, 0, 0}).sh == default_ambient_sh());
 
   auto ctx = frame_at(f++, dt, {0, 0, 0});
   auto first = p->plan(ctx);

@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "policies/default_ambient.h"
 #include "policies/octree.h"
 #include "policies/registry.h"
 
@@ -253,14 +254,15 @@ TEST_CASE("trilinear lookup reproduces a linear field exactly; octant weighs the
   CHECK(hit.sh.c[0].x == Approx(1.0 + 0.04 + 0.04 + 0.18).epsilon(1e-5));
 }
 
-TEST_CASE("before any data lookups are finite black fallbacks; outside the root too", "[octree]") {
+TEST_CASE("before any data lookups fall back to the default ambient; outside the root too",
+          "[octree]") {
   auto planner = make_octree({});
   for (const glm::dvec3& p : {glm::dvec3(0.0), glm::dvec3(1e6, -1e6, 1e4)}) {
     const LookupResult r = planner->lookup(p);
     CHECK(r.fell_back);
     CHECK(r.contributor_count == 0);
     CHECK(std::isinf(r.spacing_m));
-    CHECK(r.sh == Sh9Rgb{});
+    CHECK(r.sh == default_ambient_sh());
   }
   FakeLoop loop{*planner};
   for (int f = 0; f < 6 * 12; ++f) loop.step(glm::dvec3(1.0, 2.0, 3.0));

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "policies/default_ambient.h"
 #include "policies/per_object.h"
 #include "policies/registry.h"
 #include "sim/planner.h"
@@ -124,9 +125,10 @@ TEST_CASE("per_object: 50 spawns/s outrun 1 face/frame at 60 fps; 300 fps keeps 
 TEST_CASE("per_object: own capture at a receiver, nearest receiver's capture elsewhere",
           "[baselines]") {
   auto p = make_per_object({});
-  // Before any capture: black, fell back.
+  // Before any capture: the default ambient, fell back.
   LookupResult none = p.lookup({0, 0, 0});
   CHECK(none.fell_back);
+  CHECK(none.sh == default_ambient_sh());
   CHECK(none.contributor_count == 0);
   CHECK(std::isinf(none.spacing_m));
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "policies/default_ambient.h"
 #include "policies/registry.h"
 #include "policies/scrolling_grid.h"
 #include "sim/planner.h"
@@ -187,9 +188,10 @@ TEST_CASE("grid: blending converges with time constant blend_s, whatever the fra
 TEST_CASE("grid: lookups outside the window clamp to its edge and fall back", "[baselines]") {
   auto g = make_grid(
       {"nx=3", "ny=3", "nz=1", "spacing_m=8", "vertical_spacing_m=4", "height_m=8", "blend_s=0"});
-  // Before any data: black, fell back, no contributors.
+  // Before any data: the default ambient, fell back, no contributors.
   LookupResult none = g.lookup({0, 0, 8});
   CHECK(none.fell_back);
+  CHECK(none.sh == default_ambient_sh());
   CHECK(none.contributor_count == 0);
   CHECK(std::isinf(none.spacing_m));
 
