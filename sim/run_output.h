@@ -17,7 +17,8 @@ inline constexpr int kResultFormatVersion = 1;
 // The results' model: bump it whenever the same inputs give different results (the reference,
 // a metric, a planner's behaviour), so that `sweep --resume` recomputes runs instead of mixing
 // old and new numbers. 2: the reference stops refining where interpolation predicts well.
-inline constexpr int kResultsModelVersion = 2;
+// 3: planners without data answer the default ambient instead of black.
+inline constexpr int kResultsModelVersion = 3;
 
 struct RunIdentity {
   std::string planner;
