@@ -11,6 +11,30 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+// The largest change between two coefficient sets as a log ratio of irradiance, over the six
+// axis normals and the three channels (channels darker than 1% of the brightest are lifted to
+// it, so that a near-black channel does not dominate).
+double log_change(const Sh9Rgb& a, const Sh9Rgb& b) {
+  static const glm::dvec3 kAxes[] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                     {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
+  Rgb ea[6], eb[6];
+  double top = 0.0;
+  for (int k = 0; k < 6; ++k) {
+    ea[k] = sh_irradiance(a, kAxes[k]);
+    eb[k] = sh_irradiance(b, kAxes[k]);
+    for (int c = 0; c < 3; ++c) top = std::max({top, double(ea[k][c]), double(eb[k][c])});
+  }
+  const double floor = std::max(1e-12, 0.01 * top);
+  double worst = 0.0;
+  for (int k = 0; k < 6; ++k) {
+    for (int c = 0; c < 3; ++c) {
+      const double x = std::max(double(ea[k][c]), floor), y = std::max(double(eb[k][c]), floor);
+      worst = std::max(worst, std::abs(std::log(x / y)));
+    }
+  }
+  return worst;
+}
+
 double luminance_l00(const Sh9Rgb& sh) {
   return 0.2126 * sh.c[0].x + 0.7152 * sh.c[0].y + 0.0722 * sh.c[0].z;
 }
@@ -32,7 +56,7 @@ Sh9Rgb default_ambient() {
 PlannerInfo DemandPlanner::info() {
   std::vector<ParamSpec> specs = {
       number_param("min_spacing_m", 3.0, Range::positive(), "probe spacing next to the camera (m)"),
-      number_param("spacing_per_m", 0.2, Range::closed(0.0, 10.0),
+      number_param("spacing_per_m", 0.03, Range::closed(0.0, 10.0),
                    "spacing grows by this much per metre of distance from the predicted camera"),
       number_param("max_distance_m", 160.0, Range::positive(),
                    "no captures farther than this from the camera; probes beyond 1.5x fade out"),
@@ -47,6 +71,10 @@ PlannerInfo DemandPlanner::info() {
       bool_param("route", true, "predict along the road when the camera is on it"),
       choice_param("priority", "need", {"need", "distance"},
                    "objects by need (worst-served first) or by distance to the camera"),
+      number_param("fade_rate", 2.0, Range::non_negative(),
+                   "a new probe fades in no faster than this change of log irradiance per "
+                   "second (0 = always fade_s)"),
+      number_param("fade_max_s", 2.0, Range::non_negative(), "longest fade-in of a new probe"),
       bool_param("adapt", true,
                  "halve the spacing where a new probe disagrees with its neighbours"),
       number_param("adapt_rel", 0.25, Range::positive(),
@@ -71,6 +99,8 @@ DemandPlanner::DemandPlanner(const PlannerParams& params)
       max_probes_(static_cast<std::size_t>(params.integer("max_probes"))),
       by_need_(params.choice("priority") == "need"),
       adapt_(params.boolean("adapt")),
+      fade_rate_(params.number("fade_rate")),
+      fade_max_s_(params.number("fade_max_s")),
       adapt_de_(params.number("adapt_rel")),
       default_sh_(default_ambient()) {
   prediction_.enabled = true;
@@ -82,15 +112,17 @@ double DemandPlanner::required_spacing(double distance_m) const {
   return std::max(min_spacing_, spacing_per_m_ * distance_m);
 }
 
+double DemandPlanner::fade_in_fraction(const Probe& q) const {
+  if (q.fade_in <= 0.0) return 1.0;
+  if (q.fade_in_start < 0.0) return 0.0;
+  return std::clamp((now_ - q.fade_in_start) / q.fade_in, 0.0, 1.0);
+}
+
 double DemandPlanner::presence(const Probe& q) const {
-  double f = 1.0;
-  if (fade_s_ > 0.0) {
-    if (q.fade_in_start < 0.0) return 0.0;
-    f = std::clamp((now_ - q.fade_in_start) / fade_s_, 0.0, 1.0);
-    if (q.fade_out_start >= 0.0)
-      f *= std::clamp(1.0 - (now_ - q.fade_out_start) / fade_s_, 0.0, 1.0);
-  } else if (q.fade_out_start >= 0.0) {
-    return 0.0;
+  double f = fade_in_fraction(q);
+  if (q.fade_out_start >= 0.0) {
+    if (fade_s_ <= 0.0) return 0.0;
+    f *= std::clamp(1.0 - (now_ - q.fade_out_start) / fade_s_, 0.0, 1.0);
   }
   return f;
 }
@@ -132,9 +164,7 @@ bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* 
     const double w = kernel(q, d) * f;
     if (w <= 0.0) continue;
     // The value itself also enters gradually, from what was shown here before.
-    const double fin = q.fade_out_start >= 0.0 || fade_s_ <= 0.0
-                           ? 1.0
-                           : std::clamp((now_ - q.fade_in_start) / fade_s_, 0.0, 1.0);
+    const double fin = q.fade_out_start >= 0.0 ? 1.0 : fade_in_fraction(q);
     sum += sh_lerp(q.from, q.sh, static_cast<float>(fin)) * static_cast<float>(w);
     total += w;
     time_sum += w * q.data_time;
@@ -329,6 +359,13 @@ void DemandPlanner::deliver(const FinishedProbe& probe) {
     if (std::abs(a - b) > adapt_de_ * std::max({a, b, 1e-9})) q.detail = 0.5;
   }
   if (!had) q.from = q.sh;  // the first probe anywhere: nothing to blend from but a guess
+  // The larger the change it brings, the slower it fades in (a change spread over more
+  // frames stays under the visible step per frame), up to fade_max_s.
+  q.fade_in = fade_s_;
+  if (fade_rate_ > 0.0 && had) {
+    q.fade_in =
+        std::clamp(log_change(q.from, q.sh) / fade_rate_, fade_s_, std::max(fade_s_, fade_max_s_));
+  }
   in_flight_.erase(it);
   probes_.push_back(q);
 }

@@ -11,6 +11,11 @@ using namespace ambisim;
 
 namespace {
 
+// Probe A (value 1) at the origin, fully faded in; then the camera moves 6 m so that the
+// planner asks for probe B, which arrives with `value`. Returns how long lookups at B's position
+// keep changing after B becomes usable (the fade-in it got), in seconds at 60 fps.
+double settle_time(Planner& p, float value);
+
 Sh9Rgb constant_sh(float v) {
   Sh9Rgb sh;
   sh.c[0] = Rgb(v);
@@ -31,11 +36,15 @@ FrameContext frame(double t, glm::dvec3 camera, glm::dvec3 velocity, int startab
 
 }  // namespace
 
-TEST_CASE("ambisim spaces probes like the coverage rule, finer near the camera", "[ambisim]") {
+TEST_CASE("ambisim spaces probes almost evenly, a little coarser far away", "[ambisim]") {
+  // Every object counts the same in the error and the pops, wherever it is: the spacing grows
+  // only slowly with distance (0.03 per metre beyond 3 m spacing, i.e. from 100 m on).
   DemandPlanner p(planner_params_from_cli("ambisim", {}));
   CHECK(p.required_spacing(0.0) == 3.0);
-  CHECK(p.required_spacing(10.0) == 3.0);
-  CHECK(p.required_spacing(100.0) == Approx(20.0));
+  CHECK(p.required_spacing(100.0) == Approx(3.0));
+  CHECK(p.required_spacing(150.0) == Approx(4.5));
+  DemandPlanner q(planner_params_from_cli("ambisim", {"spacing_per_m=0.2"}));
+  CHECK(q.required_spacing(100.0) == Approx(20.0));
 }
 
 TEST_CASE("ambisim captures at the objects first, where they will be", "[ambisim]") {
@@ -104,4 +113,63 @@ TEST_CASE("ambisim lookups never step when a probe arrives, and fade in over fad
   }
   CHECK(previous > before + 0.5);                    // it did move toward B's value
   CHECK(largest_step < 0.15 * (previous - before));  // ... in many small steps
+}
+
+namespace {
+
+double settle_time(Planner& p, float value) {
+  double t = 0.0;
+  auto step = [&](glm::dvec3 camera, int startable) {
+    auto req = p.plan(frame(t, camera, {0, 0, 0}, startable));
+    for (const auto& r : req) p.started(r.tag);
+    p.update(frame(t, camera, {0, 0, 0}, startable));
+    return req;
+  };
+  auto a = step({0, 0, 1}, 1);
+  REQUIRE(a.size() == 1);
+  p.deliver({a[0].tag, a[0].position, constant_sh(1.0f), t, t});
+  t += 3.0;
+  step({0, 0, 1}, 0);
+  std::vector<CaptureRequest> b;
+  for (int k = 0; k < 600 && b.empty(); ++k) {
+    t += 1.0 / 60.0;
+    b = step({6.0, 0.0, 1.0}, 1);
+  }
+  REQUIRE(b.size() == 1);
+  p.deliver({b[0].tag, b[0].position, constant_sh(value), t, t});
+  double previous = p.lookup(b[0].position).sh.c[0].x;
+  double last_change = 0.0;
+  const double start = t + 1.0 / 60.0;  // B is usable from the next frame
+  for (int k = 0; k < 240; ++k) {
+    t += 1.0 / 60.0;
+    step({6.0, 0.0, 1.0}, 0);
+    const double v = p.lookup(b[0].position).sh.c[0].x;
+    if (std::abs(v - previous) > 1e-6 * std::abs(v)) last_change = t;
+    previous = v;
+  }
+  return last_change - start;
+}
+
+}  // namespace
+
+TEST_CASE("ambisim fades a new probe in the slower the more it changes", "[ambisim]") {
+  // fade = clamp(|ln(new / old)| / fade_rate, fade_s, fade_max_s) with fade_rate 2 per second,
+  // fade_s 0.4 s, fade_max_s 2 s; lookups at the new probe change during exactly that time.
+  const double frame_s = 1.0 / 60.0;
+  auto planner = [] { return make_planner("ambisim"); };
+  // A small change (x1.2: ln 1.2 / 2 = 0.09 s) still takes fade_s.
+  CHECK(settle_time(*planner(), 1.2f) == Approx(0.4).margin(1.5 * frame_s));
+  // x e^1.6: 0.8 s.
+  CHECK(settle_time(*planner(), static_cast<float>(std::exp(1.6))) ==
+        Approx(0.8).margin(1.5 * frame_s));
+  // Darker by the same factor: the same time.
+  CHECK(settle_time(*planner(), static_cast<float>(std::exp(-1.6))) ==
+        Approx(0.8).margin(1.5 * frame_s));
+  // x e^6 would need 3 s: capped at fade_max_s.
+  CHECK(settle_time(*planner(), static_cast<float>(std::exp(6.0))) ==
+        Approx(2.0).margin(1.5 * frame_s));
+  // fade_rate = 0: always fade_s.
+  auto fixed = make_planner("ambisim", planner_params_from_cli("ambisim", {"fade_rate=0"}));
+  CHECK(settle_time(*fixed, static_cast<float>(std::exp(1.6))) ==
+        Approx(0.4).margin(1.5 * frame_s));
 }
