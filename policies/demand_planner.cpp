@@ -75,6 +75,9 @@ PlannerInfo DemandPlanner::info() {
                    "a new probe fades in no faster than this change of log irradiance per "
                    "second (0 = always fade_s)"),
       number_param("fade_max_s", 2.0, Range::non_negative(), "longest fade-in of a new probe"),
+      bool_param("budget_spacing", true,
+                 "below 1 face per frame the near spacing grows as 1 / sqrt(faces per frame): "
+                 "as many probes per area as the budget sustains"),
       bool_param("adapt", true,
                  "halve the spacing where a new probe disagrees with its neighbours"),
       number_param("adapt_rel", 0.25, Range::positive(),
@@ -99,6 +102,7 @@ DemandPlanner::DemandPlanner(const PlannerParams& params)
       max_probes_(static_cast<std::size_t>(params.integer("max_probes"))),
       by_need_(params.choice("priority") == "need"),
       adapt_(params.boolean("adapt")),
+      budget_spacing_(params.boolean("budget_spacing")),
       fade_rate_(params.number("fade_rate")),
       fade_max_s_(params.number("fade_max_s")),
       adapt_de_(params.number("adapt_rel")),
@@ -109,7 +113,13 @@ DemandPlanner::DemandPlanner(const PlannerParams& params)
 }
 
 double DemandPlanner::required_spacing(double distance_m) const {
-  return std::max(min_spacing_, spacing_per_m_ * distance_m);
+  return std::max(min_spacing_ * budget_scale_, spacing_per_m_ * distance_m);
+}
+
+void DemandPlanner::set_budget(double faces_per_frame) {
+  budget_scale_ = budget_spacing_ && faces_per_frame > 0.0 && faces_per_frame < 1.0
+                      ? std::sqrt(1.0 / faces_per_frame)
+                      : 1.0;
 }
 
 double DemandPlanner::fade_in_fraction(const Probe& q) const {
@@ -262,6 +272,7 @@ std::vector<CaptureRequest> DemandPlanner::plan(const FrameContext& ctx) {
   planned_.clear();
   std::vector<CaptureRequest> out;
   if (ctx.startable_captures <= 0) return out;
+  set_budget(ctx.faces_per_frame);
   focus_ = make_focus(ctx, prediction_);
   const double latency = std::isfinite(ctx.capture_latency_s()) ? ctx.capture_latency_s() : 0.0;
   const double horizon = ctx.camera_cut ? 0.0 : latency + prediction_.lookahead_s;

@@ -49,8 +49,10 @@ class DemandPlanner final : public Planner {
   void set_receivers(const std::vector<ReceiverView>& receivers) override;
   void describe_nodes(std::vector<ProbeNodeView>& out) const override;
 
-  // Required probe spacing at distance d from the focus (before local refinement).
+  // Required probe spacing at distance d from the focus (before local refinement), at the
+  // budget last given to set_budget() (plan() gives it the frame's; 1 face per frame before).
   double required_spacing(double distance_m) const;
+  void set_budget(double faces_per_frame);
 
  private:
   struct Probe {
@@ -95,12 +97,14 @@ class DemandPlanner final : public Planner {
   std::size_t max_probes_;
   bool by_need_;
   bool adapt_;
+  bool budget_spacing_;
   double fade_rate_;
   double fade_max_s_;
   double adapt_de_;
   Sh9Rgb default_sh_;
 
   double now_ = 0.0;
+  double budget_scale_ = 1.0;  // near spacing factor from the budget (set_budget)
   Focus focus_;
   std::vector<ReceiverView> receivers_;
   std::uint64_t next_tag_ = 1;

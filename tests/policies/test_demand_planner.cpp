@@ -47,6 +47,30 @@ TEST_CASE("ambisim spaces probes almost evenly, a little coarser far away", "[am
   CHECK(q.required_spacing(100.0) == Approx(20.0));
 }
 
+TEST_CASE("ambisim spaces near probes wider when the budget is below 1 face per frame",
+          "[ambisim]") {
+  // As many probes per area as the budget sustains: spacing x sqrt(1 / faces per frame).
+  DemandPlanner p(planner_params_from_cli("ambisim", {}));
+  p.set_budget(0.5);
+  CHECK(p.required_spacing(0.0) == Approx(3.0 * std::sqrt(2.0)));
+  CHECK(p.required_spacing(200.0) == Approx(6.0));  // the far rule is unchanged
+  p.set_budget(0.25);
+  CHECK(p.required_spacing(0.0) == Approx(6.0));
+  p.set_budget(2.0);  // never finer than min_spacing_m
+  CHECK(p.required_spacing(0.0) == Approx(3.0));
+  p.set_budget(0.0);  // no budget: nothing to spread
+  CHECK(p.required_spacing(0.0) == Approx(3.0));
+  DemandPlanner off(planner_params_from_cli("ambisim", {"budget_spacing=false"}));
+  off.set_budget(0.5);
+  CHECK(off.required_spacing(0.0) == Approx(3.0));
+  // plan() takes the frame's budget.
+  DemandPlanner r(planner_params_from_cli("ambisim", {}));
+  FrameContext ctx = frame(0.0, {0, 0, 1}, {0, 0, 0}, 1);
+  ctx.faces_per_frame = 0.5;
+  r.plan(ctx);
+  CHECK(r.required_spacing(0.0) == Approx(3.0 * std::sqrt(2.0)));
+}
+
 TEST_CASE("ambisim captures at the objects first, where they will be", "[ambisim]") {
   auto p = make_planner("ambisim");
   p->set_receivers(
