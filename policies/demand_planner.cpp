@@ -76,8 +76,8 @@ PlannerInfo DemandPlanner::info() {
                    "second (0 = always fade_s)"),
       number_param("fade_max_s", 2.0, Range::non_negative(), "longest fade-in of a new probe"),
       bool_param("budget_spacing", true,
-                 "below 1 face per frame the near spacing grows as 1 / sqrt(faces per frame): "
-                 "as many probes per area as the budget sustains"),
+                 "below 1 face per frame the near spacing grows as 1 / sqrt(faces per frame), "
+                 "up to 4 m: as many probes per area as the budget sustains"),
       bool_param("adapt", true,
                  "halve the spacing where a new probe disagrees with its neighbours"),
       number_param("adapt_rel", 0.25, Range::positive(),
@@ -117,9 +117,11 @@ double DemandPlanner::required_spacing(double distance_m) const {
 }
 
 void DemandPlanner::set_budget(double faces_per_frame) {
-  budget_scale_ = budget_spacing_ && faces_per_frame > 0.0 && faces_per_frame < 1.0
-                      ? std::sqrt(1.0 / faces_per_frame)
-                      : 1.0;
+  budget_scale_ = 1.0;
+  if (budget_spacing_ && faces_per_frame > 0.0 && faces_per_frame < 1.0) {
+    // Never coarser than 4 m, the near spacing of the coverage rule.
+    budget_scale_ = std::max(1.0, std::min(std::sqrt(1.0 / faces_per_frame), 4.0 / min_spacing_));
+  }
 }
 
 double DemandPlanner::fade_in_fraction(const Probe& q) const {

@@ -49,13 +49,19 @@ TEST_CASE("ambisim spaces probes almost evenly, a little coarser far away", "[am
 
 TEST_CASE("ambisim spaces near probes wider when the budget is below 1 face per frame",
           "[ambisim]") {
-  // As many probes per area as the budget sustains: spacing x sqrt(1 / faces per frame).
+  // As many probes per area as the budget sustains: spacing x sqrt(1 / faces per frame), but
+  // never coarser than 4 m (the coverage rule's near spacing).
   DemandPlanner p(planner_params_from_cli("ambisim", {}));
-  p.set_budget(0.5);
-  CHECK(p.required_spacing(0.0) == Approx(3.0 * std::sqrt(2.0)));
+  p.set_budget(0.8);
+  CHECK(p.required_spacing(0.0) == Approx(3.0 * std::sqrt(1.25)));
   CHECK(p.required_spacing(200.0) == Approx(6.0));  // the far rule is unchanged
+  p.set_budget(0.5);
+  CHECK(p.required_spacing(0.0) == Approx(4.0));
   p.set_budget(0.25);
-  CHECK(p.required_spacing(0.0) == Approx(6.0));
+  CHECK(p.required_spacing(0.0) == Approx(4.0));
+  DemandPlanner fine(planner_params_from_cli("ambisim", {"min_spacing_m=1"}));
+  fine.set_budget(0.25);
+  CHECK(fine.required_spacing(0.0) == Approx(2.0));
   p.set_budget(2.0);  // never finer than min_spacing_m
   CHECK(p.required_spacing(0.0) == Approx(3.0));
   p.set_budget(0.0);  // no budget: nothing to spread
@@ -68,7 +74,7 @@ TEST_CASE("ambisim spaces near probes wider when the budget is below 1 face per 
   FrameContext ctx = frame(0.0, {0, 0, 1}, {0, 0, 0}, 1);
   ctx.faces_per_frame = 0.5;
   r.plan(ctx);
-  CHECK(r.required_spacing(0.0) == Approx(3.0 * std::sqrt(2.0)));
+  CHECK(r.required_spacing(0.0) == Approx(4.0));
 }
 
 TEST_CASE("ambisim captures at the objects first, where they will be", "[ambisim]") {
