@@ -1,7 +1,8 @@
 // Receivers JSON ("receivers" object). Units: metres, seconds, m/s. Defaults in brackets.
 //   seed            non-negative integer                                                 [1]
 //   camera_object   {"enabled" [true], "ahead_m" [8] along the camera's horizontal heading
-//                    (-1e4..1e4), "height_m" 0..1e4 above the ground [1]}
+//                    (-1e4..1e4), "follow" "ground" | "camera" ["ground"], "height_m" [1]
+//                    above the ground (0..1e4) or above the camera (-1e4..1e4)}
 //   lod_props       absent = none; {"trigger": [x, y, z] required (x, y used),
 //                    "lod_distance_m" > 0 [200], "rate_per_s" >= 0 [50],
 //                    "band_near_m" >= 0 [20], "band_far_m" >= near [150],
@@ -67,7 +68,11 @@ ReceiversRecord parse_receivers(ObjectReader& r) {
   if (auto c = r.optional_object("camera_object")) {
     rec.camera_object.enabled = c->boolean("enabled", true);
     rec.camera_object.ahead_m = c->number("ahead_m", 8.0, Range::closed(-kMaxOffset, kMaxOffset));
-    rec.camera_object.height_m = c->number("height_m", 1.0, Range::closed(0.0, kMaxOffset));
+    const bool camera = c->choice("follow", "ground", {"ground", "camera"}) == "camera";
+    rec.camera_object.follow =
+        camera ? CameraObjectRecord::Follow::camera : CameraObjectRecord::Follow::ground;
+    rec.camera_object.height_m =
+        c->number("height_m", 1.0, Range::closed(camera ? -kMaxOffset : 0.0, kMaxOffset));
     c->finish();
   }
   if (auto p = r.optional_object("lod_props")) {
@@ -170,9 +175,16 @@ void ReceiverSet::update_camera_object(double time, const CameraState& camera) {
   // Objects stand on whatever is solid: in a forest that is the canopy top (the world has no
   // space under the trees; a point inside the canopy would be inside a solid column).
   const double ground = stand_height(p.x, p.y);
+  const glm::dvec3 vh = horizontal(camera.velocity);
+  if (rec_.camera_object.follow == CameraObjectRecord::Follow::camera) {
+    const double flying = camera.position.z + rec_.camera_object.height_m;
+    const double lowest = ground + CameraObjectRecord::kMinClearance;
+    r.position = {p.x, p.y, std::max(flying, lowest)};
+    r.velocity = {vh.x, vh.y, flying >= lowest ? camera.velocity.z : 0.0};
+    return;
+  }
   r.position = {p.x, p.y, ground + rec_.camera_object.height_m};
   // Vertical speed follows the ground slope along the heading (central difference, +-0.5 m).
-  const glm::dvec3 vh = horizontal(camera.velocity);
   const glm::dvec3 a = p - 0.5 * heading_;
   const glm::dvec3 b = p + 0.5 * heading_;
   const double slope = stand_height(b.x, b.y) - stand_height(a.x, a.y);

@@ -34,9 +34,15 @@ struct Receiver {
 };
 
 struct CameraObjectRecord {
+  // ground: the object stands height_m above whatever is solid below it (a car ahead of a
+  // driving camera); camera: it flies height_m above (negative: below) the camera, like a
+  // player's aircraft, and never closer than kMinClearance to the surface.
+  enum class Follow { ground, camera };
   bool enabled = true;
   double ahead_m = 8.0;   // along the camera's horizontal heading
-  double height_m = 1.0;  // above the ground
+  double height_m = 1.0;  // above the ground (follow ground) or the camera (follow camera)
+  Follow follow = Follow::ground;
+  static constexpr double kMinClearance = 0.5;  // metres above the surface, follow camera
 };
 
 struct LodPropsRecord {

@@ -136,6 +136,29 @@ TEST_CASE("the camera object rides ahead of the camera on the ground", "[receive
   CHECK(r.velocity.z == Approx(8.0).epsilon(1e-6));  // slope 0.1 x 80 m/s
 }
 
+TEST_CASE("a camera object that follows the camera flies with it, never into the ground",
+          "[receivers]") {
+  ReceiversRecord rec;
+  rec.camera_object.follow = CameraObjectRecord::Follow::camera;
+  SECTION("2 m below a level flight at 50 m") {
+    rec.camera_object.height_m = -2.0;
+    ReceiverSet set(rec, sloped());
+    const CameraState cam = run(set, flight(80.0), 50.0, 100);
+    const Receiver& r = set.live().front();
+    CHECK(r.position.x == Approx(cam.position.x + 8.0).epsilon(kStraightRel));
+    CHECK(r.position.z == Approx(cam.position.z - 2.0).epsilon(1e-12));
+    CHECK(r.velocity.z == Approx(cam.velocity.z).margin(1e-9));
+  }
+  SECTION("an offset below the surface is held 0.5 m above it") {
+    rec.camera_object.height_m = -45.0;  // camera at 50 m, ground 0.1 x ~ 17 m
+    ReceiverSet set(rec, sloped());
+    run(set, flight(80.0), 50.0, 100);
+    const Receiver& r = set.live().front();
+    CHECK(r.position.z == Approx(0.1 * r.position.x + CameraObjectRecord::kMinClearance));
+    CHECK(r.velocity.z == 0.0);
+  }
+}
+
 TEST_CASE("traffic drives both carriageways at 30 m/s, oncoming the other way", "[receivers]") {
   const Spline3 road({{0, 0, 0}, {10000, 0, 0}});
   TerrainQueries t = sloped();
