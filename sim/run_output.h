@@ -18,7 +18,8 @@ inline constexpr int kResultFormatVersion = 1;
 // a metric, a planner's behaviour), so that `sweep --resume` recomputes runs instead of mixing
 // old and new numbers. 2: the reference stops refining where interpolation predicts well.
 // 3: planners without data answer the default ambient instead of black.
-inline constexpr int kResultsModelVersion = 3;
+// 4: the ambisim planner's spacing and fades (forest_edge/flyover files changed themselves).
+inline constexpr int kResultsModelVersion = 4;
 
 struct RunIdentity {
   std::string planner;
