@@ -49,13 +49,20 @@ double FrameContext::capture_latency_s() const {
   return std::ceil(6.0 / faces_per_frame) * dt;
 }
 
-RunResult simulate(const Scenario& scenario, const World& world, const ReferenceTrack& reference,
-                   Planner& planner, const SimulationOptions& options) {
+namespace {
+
+// One run; `reference` may be null (simulate_without_reference): then nothing is scored against
+// truth, and everything the planner sees is unchanged.
+RunResult run_simulation(const Scenario& scenario, const World& world,
+                         const ReferenceTrack* reference, Planner& planner,
+                         const SimulationOptions& options) {
   const auto t_start = Clock::now();
   RunResult result;
   MetricSettings settings = scenario.metrics;
-  settings.exposure = reference.exposure;
-  result.exposure = reference.exposure;
+  // Without a reference the exposure is unknown; 1 only satisfies RunMetrics, which then never
+  // sees a receiver's irradiance (the exposure only scales those).
+  settings.exposure = reference != nullptr ? reference->exposure : 1.0;
+  result.exposure = reference != nullptr ? reference->exposure : 0.0;
   RunMetrics metrics(settings);
   const std::size_t nn = settings.normals.size();
 
@@ -69,6 +76,7 @@ RunResult simulate(const Scenario& scenario, const World& world, const Reference
   std::vector<FinishedProbe> finished;
   std::vector<Planner::ReceiverView> views;
   std::vector<Rgb> planner_e(nn);
+  std::vector<LookupResult> receiver_lookups, demand_lookups;
   std::size_t frame_index = 0;
   // Snapshots feed the views; a 30-minute run would otherwise write gigabytes of them.
   const double snapshot_every =
@@ -79,11 +87,16 @@ RunResult simulate(const Scenario& scenario, const World& world, const Reference
   // The oracle (a planner that ignores the budget) is served the reference's own SH9 at a
   // receiver: the representation's ceiling against exactly this reference. A request that is
   // not at a receiver is rendered at the reference's resolution.
-  const int oracle_face_size = reference.face_size > 0 ? reference.face_size : face_size;
+  if (reference == nullptr && planner.ignores_budget()) {
+    throw std::invalid_argument("the oracle (" + planner.name() +
+                                ") is served from the reference track: it cannot run without one");
+  }
+  const int oracle_face_size =
+      reference != nullptr && reference->face_size > 0 ? reference->face_size : face_size;
   auto render_all_faces = [&](InFlight& c, std::size_t frame) {
     const auto t0 = Clock::now();
-    const std::ptrdiff_t slot = reference.find_slot(frame, c.request.position);
-    c.memo = slot >= 0 ? &reference.sh[static_cast<std::size_t>(slot)] : nullptr;
+    const std::ptrdiff_t slot = reference->find_slot(frame, c.request.position);
+    c.memo = slot >= 0 ? &reference->sh[static_cast<std::size_t>(slot)] : nullptr;
     if (c.memo == nullptr) {
       if (c.cube.size != oracle_face_size) c.cube = CubeMap(oracle_face_size);
       for (int f = 0; f < kCubeFaces; ++f) {
@@ -108,12 +121,16 @@ RunResult simulate(const Scenario& scenario, const World& world, const Reference
 
   while (motion.next()) {
     const MotionFrame& mf = motion.current();
-    if (frame_index >= reference.frames.size()) {
-      throw std::logic_error("reference track is shorter than the run");
-    }
-    const auto& span = reference.frames[frame_index];
-    if (span.count != motion.receivers().size()) {
-      throw std::logic_error("reference track does not match the scenario's receivers");
+    const std::size_t receiver_count = motion.receivers().size();
+    ReferenceTrack::FrameSpan span{0, receiver_count};
+    if (reference != nullptr) {
+      if (frame_index >= reference->frames.size()) {
+        throw std::logic_error("reference track is shorter than the run");
+      }
+      span = reference->frames[frame_index];
+      if (span.count != receiver_count) {
+        throw std::logic_error("reference track does not match the scenario's receivers");
+      }
     }
     metrics.begin_frame(mf.frame.index, mf.frame.time, mf.frame.dt);
     budget.begin_frame(mf.frame.time);
@@ -199,25 +216,33 @@ RunResult simulate(const Scenario& scenario, const World& world, const Reference
     planner.update(ctx);
     result.timing.planner_s += seconds_since(t0);
 
-    // 5. score the receivers and the demand points.
+    // 5. look up every receiver and demand point (only the lookups are timed), then score.
+    const std::vector<DemandPoint> demand =
+        demand_points(mf.camera.position, mf.camera.velocity, ground, settings.demand);
+    receiver_lookups.clear();
+    demand_lookups.clear();
     const auto tl = Clock::now();
-    std::int64_t lookups = 0;
-    for (std::size_t k = 0; k < span.count; ++k) {
+    for (std::size_t k = 0; k < receiver_count; ++k) {
+      receiver_lookups.push_back(planner.lookup(motion.receivers()[k].position));
+    }
+    for (const auto& d : demand) demand_lookups.push_back(planner.lookup(d.position));
+    result.timing.lookup_s += seconds_since(tl);
+    result.timing.lookups += static_cast<std::int64_t>(receiver_count + demand.size());
+    for (std::size_t k = 0; k < receiver_count; ++k) {
       const Receiver& r = motion.receivers()[k];
-      const LookupResult lr = planner.lookup(r.position);
-      ++lookups;
-      for (std::size_t m = 0; m < nn; ++m) planner_e[m] = sh_irradiance(lr.sh, settings.normals[m]);
-      metrics.receiver(r.id, planner_e, std::span<const Rgb>(reference.values(span.begin + k), nn),
-                       lr);
+      const LookupResult& lr = receiver_lookups[k];
+      if (reference != nullptr) {
+        for (std::size_t m = 0; m < nn; ++m) {
+          planner_e[m] = sh_irradiance(lr.sh, settings.normals[m]);
+        }
+        metrics.receiver(r.id, planner_e,
+                         std::span<const Rgb>(reference->values(span.begin + k), nn), lr);
+      }
       metrics.demand_point(lr, glm::length(r.position - mf.camera.position), DemandKind::receiver);
     }
-    for (const auto& d :
-         demand_points(mf.camera.position, mf.camera.velocity, ground, settings.demand)) {
-      metrics.demand_point(planner.lookup(d.position), d.distance_m, d.kind);
-      ++lookups;
+    for (std::size_t k = 0; k < demand.size(); ++k) {
+      metrics.demand_point(demand_lookups[k], demand[k].distance_m, demand[k].kind);
     }
-    result.timing.lookup_s += seconds_since(tl);
-    result.timing.lookups += lookups;
 
     const PlannerStats stats = planner.stats();
     costs.live_probes = stats.live_probes;
@@ -249,6 +274,18 @@ RunResult simulate(const Scenario& scenario, const World& world, const Reference
   result.timing.frames = static_cast<std::int64_t>(frame_index);
   result.timing.total_s = seconds_since(t_start);
   return result;
+}
+
+}  // namespace
+
+RunResult simulate(const Scenario& scenario, const World& world, const ReferenceTrack& reference,
+                   Planner& planner, const SimulationOptions& options) {
+  return run_simulation(scenario, world, &reference, planner, options);
+}
+
+RunResult simulate_without_reference(const Scenario& scenario, const World& world, Planner& planner,
+                                     const SimulationOptions& options) {
+  return run_simulation(scenario, world, nullptr, planner, options);
 }
 
 }  // namespace ambisim

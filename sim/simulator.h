@@ -73,4 +73,15 @@ struct SimulationOptions {
 RunResult simulate(const Scenario& scenario, const World& world, const ReferenceTrack& reference,
                    Planner& planner, const SimulationOptions& options = {});
 
+// The same run without a reference track ("reference off"), for throughput measurements and
+// for tools that only need what the planner did. Everything the planner sees and does is
+// identical to simulate(): the frames, the budget, plan/started/refused/update/deliver, every
+// receiver and demand-point lookup, the rendered captures. What needs the reference is left
+// out: no irradiance is evaluated at the metric normals and nothing is scored against truth, so
+// the summary's accuracy, pops, staleness and receiver counts stay empty (0 or NaN) and
+// `exposure` is 0; faces, captures, probes, memory and coverage are the same as with it.
+// The oracle is served from the reference, so it throws std::invalid_argument here.
+RunResult simulate_without_reference(const Scenario& scenario, const World& world, Planner& planner,
+                                     const SimulationOptions& options = {});
+
 }  // namespace ambisim
