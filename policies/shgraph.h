@@ -31,6 +31,8 @@ class ShGraphPlanner final : public Planner {
   void describe_nodes(std::vector<ProbeNodeView>& out) const override { core_.describe_nodes(out); }
 
   const ShGraphCore<3>& graph() const { return core_; }
+  // The reference paths of ShGraphCore::set_naive (tests, bench/).
+  void set_naive(bool naive) { core_.set_naive(naive); }
 
  private:
   std::string name_;

@@ -32,6 +32,8 @@ class ShGraph2dPlanner final : public Planner {
   void describe_nodes(std::vector<ProbeNodeView>& out) const override { core_.describe_nodes(out); }
 
   const ShGraphCore<2>& graph() const { return core_; }
+  // The reference paths of ShGraphCore::set_naive (tests, bench/).
+  void set_naive(bool naive) { core_.set_naive(naive); }
 
  private:
   PlannerParams params_;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <set>
 #include <tuple>
@@ -203,6 +204,23 @@ AnchorEntry* ShGraphCore<Dim>::acquire(const Key& key) {
 }
 
 template <int Dim>
+void ShGraphCore<Dim>::forget(AnchorEntry* e) {
+  if (e->anchor.has_coefficients()) by_age_.erase({e->anchor.creation_time(), e});
+  if (e->anchor.fading()) std::erase(fading_, e);
+}
+
+template <int Dim>
+void ShGraphCore<Dim>::set_coefficients(AnchorEntry* e, const Sh9Rgb& sh,
+                                        const FinishedProbe& probe, const Sh9Rgb* fade_from,
+                                        double fade_from_time) {
+  CoefficientAnchor& a = e->anchor;
+  if (a.has_coefficients()) by_age_.erase({a.creation_time(), e});
+  if (!a.fading()) fading_.push_back(e);
+  a.set_new(sh, probe.requested_time, probe.tag, fade_from, fade_from_time);
+  by_age_.insert({a.creation_time(), e});
+}
+
+template <int Dim>
 std::int32_t ShGraphCore<Dim>::alloc_block() {
   if (!free_blocks_.empty()) {
     const std::int32_t b = free_blocks_.back();
@@ -280,7 +298,10 @@ void ShGraphCore<Dim>::release_node(std::int32_t i) {
     n.link[d] = -1;
   }
   auto it = anchors_.find(n.key);
-  if (it != anchors_.end() && --it->second.refs == 0) anchors_.erase(it);
+  if (it != anchors_.end() && --it->second.refs == 0) {
+    forget(&it->second);
+    anchors_.erase(it);
+  }
   n.anchor = nullptr;
   n.parent = -1;  // dead (slot 0, the root, is never released)
   n.children_with_coefficients = 0;
@@ -356,7 +377,10 @@ void ShGraphCore<Dim>::shrink_root(int child) {
     if (c != child) release_node(fc + c);
   }
   auto it = anchors_.find(nodes_[0].key);
-  if (it != anchors_.end() && --it->second.refs == 0) anchors_.erase(it);
+  if (it != anchors_.end() && --it->second.refs == 0) {
+    forget(&it->second);
+    anchors_.erase(it);
+  }
   move_node(keep, 0);
   nodes_[0].parent = -1;
   nodes_[keep].parent = -1;
@@ -398,6 +422,84 @@ std::int32_t ShGraphCore<Dim>::neighbour(std::int32_t i, const std::array<int, D
     if (j >= 0) return j;
   }
   return -1;
+}
+
+template <int Dim>
+void ShGraphCore<Dim>::neighbourhood_naive(std::int32_t i, Neighbourhood& out) const {
+  std::array<int, Dim> o{};
+  for (int n = 0; n < kChildren; ++n) {
+    int rest = n;
+    bool zero = true;
+    for (int a = 0; a < Dim; ++a) {
+      o[a] = rest % 3 - 1;
+      rest /= 3;
+      zero = zero && o[a] == 0;
+    }
+    out[static_cast<std::size_t>(n)] = zero ? i : neighbour(i, o);
+  }
+}
+
+namespace {
+
+// How ShGraphCore::neighbourhood() fills one cell of the 3^dim neighbourhood: from each cell
+// with one fewer non-zero offset (one step back along an axis a where this cell's offset is
+// non-zero) through that cell's link along a. Cells come in order of their number of non-zero
+// offsets, so every source is filled before it is used.
+struct NeighbourStep {
+  std::int32_t cell = 0;
+  std::int32_t count = 0;  // non-zero offsets = sources
+  std::array<std::int32_t, 3> from{};
+  std::array<std::int32_t, 3> link{};
+};
+
+template <int Dim>
+struct NeighbourSteps {
+  static constexpr int kCells = Dim == 3 ? 27 : 9;
+  std::array<NeighbourStep, kCells - 1> step{};
+  NeighbourSteps() {
+    std::size_t k = 0;
+    for (int nonzero = 1; nonzero <= Dim; ++nonzero) {
+      for (int n = 0; n < kCells; ++n) {
+        NeighbourStep st;
+        st.cell = n;
+        int rest = n, stride = 1;
+        for (int a = 0; a < Dim; ++a, rest /= 3, stride *= 3) {
+          const int o = rest % 3 - 1;
+          if (o == 0) continue;
+          st.from[static_cast<std::size_t>(st.count)] = n - o * stride;
+          st.link[static_cast<std::size_t>(st.count)] = 2 * a + (o > 0 ? 1 : 0);
+          ++st.count;
+        }
+        if (st.count == nonzero) step[k++] = st;
+      }
+    }
+  }
+};
+
+template <int Dim>
+const NeighbourSteps<Dim> kNeighbourSteps{};
+
+}  // namespace
+
+template <int Dim>
+void ShGraphCore<Dim>::neighbourhood(std::int32_t i, Neighbourhood& out) const {
+  // neighbour(i, o) for every offset at once. neighbour() walks one link per non-zero axis in
+  // some axis order and returns the node where any order arrives (same-depth links are
+  // geometric: every successful order ends at the same node), or -1. A cell is thus reachable
+  // iff, for some non-zero axis a, the cell one step back along a is reachable and has a link
+  // along a: filling cells by their number of non-zero offsets gives exactly neighbour()'s
+  // answers with one link read per (cell, axis) instead of a walk per order.
+  const Node* nodes = nodes_.data();
+  out[static_cast<std::size_t>(kChildren / 2)] = i;
+  for (const NeighbourStep& st : kNeighbourSteps<Dim>.step) {
+    std::int32_t m = out[static_cast<std::size_t>(st.from[0])];
+    std::int32_t r = m >= 0 ? nodes[m].link[static_cast<std::size_t>(st.link[0])] : -1;
+    for (std::size_t t = 1; r < 0 && t < static_cast<std::size_t>(st.count); ++t) {
+      m = out[static_cast<std::size_t>(st.from[t])];
+      if (m >= 0) r = nodes[m].link[static_cast<std::size_t>(st.link[t])];
+    }
+    out[static_cast<std::size_t>(st.cell)] = r;
+  }
 }
 
 template <int Dim>
@@ -602,11 +704,11 @@ void ShGraphCore<Dim>::deliver(const FinishedProbe& probe) {
     // D8: fade from what a lookup showed here just before, so the new set does not pop.
     const LookupResult before = lookup(a->second.position);
     if (before.contributor_count > 0) {
-      anchor.set_new(sh, probe.requested_time, probe.tag, &before.sh, before.data_time);
+      set_coefficients(&a->second, sh, probe, &before.sh, before.data_time);
       return;
     }
   }
-  anchor.set_new(sh, probe.requested_time, probe.tag, nullptr, 0.0);
+  set_coefficients(&a->second, sh, probe, nullptr, 0.0);
 }
 
 template <int Dim>
@@ -655,7 +757,30 @@ void ShGraphCore<Dim>::update(const FrameContext& ctx) {
   AnchorTiming timing = s_.timing;
   const double latency = ctx.capture_latency_s();
   timing.margin_s = 2.0 * (std::isfinite(latency) ? latency : 0.0) + 1.0;  // D7
-  for (auto& [key, e] : anchors_) e.anchor.update(now_, timing);
+  // Every anchor's update(), visiting only those it can change: anchors mid-fade, and anchors
+  // whose set is old enough to expire or to ask for renewal now. For any other anchor with a
+  // set, age <= lifetime - max(margin now, margin before) - 1 s: not expired, and its renewal
+  // flag is false now and was false after the previous update (its age was smaller then), so
+  // update() would leave it as it is. Anchors without a set and not fading: update() is a no-op.
+  // The anchors are independent, so the order of the visits does not matter.
+  if (naive_) {
+    for (auto& [key, e] : anchors_) e.anchor.update(now_, timing);
+    for (auto it = by_age_.begin(); it != by_age_.end();) {
+      it = it->second->anchor.has_coefficients() ? std::next(it) : by_age_.erase(it);
+    }
+  } else {
+    for (AnchorEntry* e : fading_) e->anchor.update(now_, timing);
+    std::vector<AnchorEntry*> faded = fading_;
+    std::sort(faded.begin(), faded.end());
+    const double renew_age = s_.timing.lifetime_s - std::max(timing.margin_s, margin_prev_s_) - 1.0;
+    for (auto it = by_age_.begin(); it != by_age_.end() && now_ - it->first > renew_age;) {
+      AnchorEntry* e = it->second;
+      if (!std::binary_search(faded.begin(), faded.end(), e)) e->anchor.update(now_, timing);
+      it = e->anchor.has_coefficients() ? std::next(it) : by_age_.erase(it);
+    }
+  }
+  margin_prev_s_ = timing.margin_s;
+  std::erase_if(fading_, [](const AnchorEntry* e) { return !e->anchor.fading(); });
   // A capture that never came back (budget gone) must not block its anchor for ever.
   for (auto it = in_flight_.begin(); it != in_flight_.end();) {
     if (now_ - it->second.requested_time > s_.timing.lifetime_s) {
@@ -688,8 +813,14 @@ void ShGraphCore<Dim>::update(const FrameContext& ctx) {
 
 template <int Dim>
 LookupResult ShGraphCore<Dim>::lookup(const glm::dvec3& p) const {
-  LookupResult r;
-  if (nodes_.empty()) return default_ambient_lookup();
+  LookupResult r;  // filled in place: one named result, so no copy on return
+  if (!lookup_into(p, r)) r = default_ambient_lookup();
+  return r;
+}
+
+template <int Dim>
+bool ShGraphCore<Dim>::lookup_into(const glm::dvec3& p, LookupResult& r) const {
+  if (nodes_.empty()) return false;
   const Q q = to_q(p);
   const bool outside = !contains(0, q);
   std::array<std::int32_t, kMaxLevels> path;
@@ -704,34 +835,52 @@ LookupResult ShGraphCore<Dim>::lookup(const glm::dvec3& p) const {
   std::array<Best, kOctants> best{}, chosen{};
   int chosen_depth = 0;
   bool have = false;
-  std::array<int, Dim> o{};
-  constexpr int kCells = Dim == 3 ? 27 : 9;
+  std::array<std::int32_t, kChildren> cells{};
   for (int k = count - 1; k >= 0; --k) {
     const std::int32_t i = path[k];
     best.fill(Best{});
     std::uint32_t covered = 0;
     // D5: the node and its 3^Dim - 1 same-depth neighbours, reached through the links.
-    for (int n = 0; n < kCells; ++n) {
-      int rest = n;
-      bool zero = true;
-      for (int a = 0; a < Dim; ++a) {
-        o[a] = rest % 3 - 1;
-        rest /= 3;
-        zero = zero && o[a] == 0;
+    if (naive_) {
+      neighbourhood_naive(i, cells);
+    } else {
+      neighbourhood(i, cells);
+    }
+    if (naive_) {
+      for (int n = 0; n < kChildren; ++n) {
+        const std::int32_t j = cells[static_cast<std::size_t>(n)];
+        if (j < 0) continue;
+        const AnchorEntry* e = nodes_[j].anchor;
+        if (!e->anchor.has_coefficients()) continue;
+        double d2 = 0.0;
+        int oct = 0;
+        for (int a = 0; a < Dim; ++a) {
+          const double dq = static_cast<double>(nodes_[j].key[a]) - q[a];
+          d2 += dq * dq;
+          if (dq >= 0.0) oct |= 1 << a;
+        }
+        covered |= 1u << oct;
+        if (d2 < best[oct].d2) best[oct] = {e, d2};
       }
-      const std::int32_t j = zero ? i : neighbour(i, o);
-      if (j < 0) continue;
-      const AnchorEntry* e = nodes_[j].anchor;
-      if (!e->anchor.has_coefficients()) continue;
-      double d2 = 0.0;
-      int oct = 0;
-      for (int a = 0; a < Dim; ++a) {
-        const double dq = static_cast<double>(nodes_[j].key[a]) - q[a];
-        d2 += dq * dq;
-        if (dq >= 0.0) oct |= 1 << a;
+    } else {
+      const Node* nodes = nodes_.data();
+      for (std::size_t n = 0; n < static_cast<std::size_t>(kChildren); ++n) {
+        const std::int32_t j = cells[n];
+        if (j < 0) continue;
+        const Node& nd = nodes[j];
+        const AnchorEntry* e = nd.anchor;
+        if (!e->anchor.has_coefficients()) continue;
+        double d2 = 0.0;
+        int oct = 0;
+        for (int a = 0; a < Dim; ++a) {
+          const double dq = static_cast<double>(nd.key[a]) - q[a];
+          d2 += dq * dq;
+          oct |= (dq >= 0.0 ? 1 : 0) << a;
+        }
+        covered |= 1u << oct;
+        Best& b = best[static_cast<std::size_t>(oct)];
+        if (d2 < b.d2) b = {e, d2};
       }
-      covered |= 1u << oct;
-      if (d2 < best[oct].d2) best[oct] = {e, d2};
     }
     if (covered == 0) continue;
     if (!have) {
@@ -746,7 +895,7 @@ LookupResult ShGraphCore<Dim>::lookup(const glm::dvec3& p) const {
       break;
     }
   }
-  if (!have) return default_ambient_lookup();
+  if (!have) return false;
   const double cell = cell_size(chosen_depth);
   const double eps_q = 1e-3 * cell / h_;
   std::array<double, kOctants> w{};
@@ -773,25 +922,49 @@ LookupResult ShGraphCore<Dim>::lookup(const glm::dvec3& p) const {
     }
   }
   double data_time = 0.0;
+  // The fast path sums the 27 floats of each set as one flat array (vectorised): the same
+  // products and sums, element by element, as the naive path's operators.
+  static_assert(sizeof(Sh9Rgb) == kShCount * 3 * sizeof(float));
+  std::array<float, kShCount * 3> acc{};
   for (int k = 0; k < kOctants; ++k) {
     if (!chosen[k].e || w[k] <= 0.0) continue;
     const double wk = w[k] / sum;
     const CoefficientAnchor& a = chosen[k].e->anchor;
-    r.sh += a.active() * static_cast<float>(wk);
+    if (naive_) {
+      r.sh += a.active() * static_cast<float>(wk);
+    } else {
+      const auto wf = static_cast<float>(wk);
+      // Straight from the set's bytes (27 floats), no copy of it on the stack.
+      const auto* bytes = reinterpret_cast<const unsigned char*>(&a.active());
+      for (std::size_t c = 0; c < acc.size(); ++c) {
+        float v;
+        std::memcpy(&v, bytes + c * sizeof(float), sizeof v);
+        acc[c] += v * wf;
+      }
+    }
     r.contributors[static_cast<std::size_t>(r.contributor_count++)] = {a.tag(),
                                                                        static_cast<float>(wk)};
     data_time += wk * a.data_time();
   }
+  if (!naive_) {
+    for (std::size_t c = 0; c < r.sh.c.size(); ++c) {
+      r.sh.c[c] = Rgb(acc[3 * c], acc[3 * c + 1], acc[3 * c + 2]);
+    }
+  }
   r.data_time = data_time;
   r.spacing_m = cell;
   r.fell_back = outside;  // outside the graph: the root's answer is only a coarse default
-  return r;
+  return true;
 }
 
 template <int Dim>
 PlannerStats ShGraphCore<Dim>::stats() const {
   PlannerStats s;
-  for (const auto& [key, e] : anchors_) s.live_probes += e.anchor.has_coefficients() ? 1 : 0;
+  if (naive_) {
+    for (const auto& [key, e] : anchors_) s.live_probes += e.anchor.has_coefficients() ? 1 : 0;
+  } else {
+    s.live_probes = static_cast<std::int64_t>(by_age_.size());  // the anchors holding a set
+  }
   s.nodes = static_cast<std::int64_t>(nodes_.size() - free_blocks_.size() * kChildren);
   // Sets: Active + New per anchor, as the format stores them. Structure: the anchor's
   // bookkeeping (its struct minus the two float sets), the key and a map node each; the node

@@ -15,6 +15,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -92,6 +93,11 @@ class ShGraphCore {
 
   explicit ShGraphCore(const ShGraphSettings& s);
 
+  // The straightforward paths, kept as the reference for tests and bench/: update() visits
+  // every anchor, stats() counts them, lookup() walks to each neighbour separately. Results
+  // are identical either way (tests/policies/test_shgraph_naive.cpp).
+  void set_naive(bool naive) { naive_ = naive; }
+
   std::vector<CaptureRequest> plan(const FrameContext& ctx);
   void started(std::uint64_t tag);
   void refused(std::uint64_t tag);
@@ -126,6 +132,10 @@ class ShGraphCore {
   glm::dvec3 capture_position(const glm::dvec3& nominal) const;
 
   AnchorEntry* acquire(const Key& key);
+  // Drops an anchor from the update lists before its entry is erased.
+  void forget(AnchorEntry* e);
+  void set_coefficients(AnchorEntry* e, const Sh9Rgb& sh, const FinishedProbe& probe,
+                        const Sh9Rgb* fade_from, double fade_from_time);
   std::int32_t alloc_block();
   void init_child(std::int32_t parent, int c, std::int32_t slot);
   void link_children(std::int32_t parent);
@@ -137,12 +147,18 @@ class ShGraphCore {
   void shrink_root(int child);
   std::int32_t ensure_node(const Q& q, int depth);
   std::int32_t neighbour(std::int32_t i, const std::array<int, Dim>& offset) const;
+  // The node and its same-depth neighbours, index sum (o[a] + 1) 3^a (-1 where none).
+  using Neighbourhood = std::array<std::int32_t, kChildren>;
+  void neighbourhood(std::int32_t i, Neighbourhood& out) const;
+  void neighbourhood_naive(std::int32_t i, Neighbourhood& out) const;
   std::int32_t find_deepest(const Q& q, std::array<std::int32_t, kMaxLevels>& path,
                             int* count) const;
   std::uint32_t refresh_masks(std::int32_t i, const Focus& focus, bool* in_flight);
   bool protected_node(std::int32_t i, const Focus& focus) const;
   void update_working_depth(const FrameContext& ctx);
   double ground_at(double x, double y) const;
+  // lookup() without its fallback: false when no set serves p (r is then untouched).
+  bool lookup_into(const glm::dvec3& p, LookupResult& r) const;
 
   ShGraphSettings s_;
   int dmax_ = 0;
@@ -152,6 +168,13 @@ class ShGraphCore {
   std::vector<Node> nodes_;  // [0] = root; then blocks of kChildren
   std::vector<std::int32_t> free_blocks_;
   std::map<Key, AnchorEntry> anchors_;
+  // What update() must visit (the rest of the anchors' update() would change nothing): anchors
+  // holding a set, by the creation time of their newest set (only old sets can expire or ask
+  // for renewal), and anchors mid-fade. by_age_ holds exactly the anchors with coefficients.
+  std::set<std::pair<double, AnchorEntry*>> by_age_;
+  std::vector<AnchorEntry*> fading_;
+  double margin_prev_s_ = 0.0;  // the renewal margin of the previous update()
+  bool naive_ = false;
   struct InFlight {
     Key key{};
     double requested_time = 0.0;
