@@ -83,7 +83,8 @@ TEST_CASE("ambisim captures at the objects first, where they will be", "[ambisim
       {{7, {50.0, 0.0, 1.0}, {0.0, 10.0, 0.0}}, {3, {5.0, 0.0, 1.0}, {0.0, 0.0, 0.0}}});
   const auto req = p->plan(frame(0.0, {0, 0, 1}, {0, 0, 0}, 1));
   REQUIRE(req.size() == 1);
-  // The nearer object (at 5 m) comes first; it does not move, so no prediction.
+  // Neither has a probe (equal need): the nearer object (at 5 m) comes first; it does not
+  // move, so no prediction.
   CHECK(glm::distance(req[0].position, glm::dvec3(5.0, 0.0, 1.0)) < 1e-9);
   // Never more requests than the simulator can start.
   CHECK(p->plan(frame(0.0, {0, 0, 1}, {0, 0, 0}, 0)).empty());
@@ -93,6 +94,35 @@ TEST_CASE("ambisim captures at the objects first, where they will be", "[ambisim
   const auto r2 = q->plan(frame(0.0, {0, 0, 1}, {0, 0, 0}, 1));
   REQUIRE(r2.size() == 1);
   CHECK(r2[0].position.y == Approx(10.0 * (0.1 + 0.3)));
+}
+
+TEST_CASE("ambisim serves the worst-served object first, not the nearest", "[ambisim]") {
+  // need = distance to the nearest probe / required spacing (3 m here). The player's vehicle
+  // 9.6 m from the camera has a probe 1.6 m away (need 0.53, still short of a probe: > half a
+  // spacing); a prop 40 m away has none closer than 32 m (need 10.7): the prop goes first.
+  auto p = make_planner("ambisim");
+  p->set_receivers({{0, {8.0, 0.0, 1.0}, {0.0, 0.0, 0.0}}});
+  const auto a = p->plan(frame(0.0, {0, 0, 1}, {0, 0, 0}, 1));
+  REQUIRE(a.size() == 1);
+  CHECK(glm::distance(a[0].position, glm::dvec3(8.0, 0.0, 1.0)) < 1e-9);
+  p->started(a[0].tag);
+  p->deliver({a[0].tag, a[0].position, constant_sh(1.0f), 0.0, 0.1});
+  p->update(frame(0.1, {0, 0, 1}, {0, 0, 0}, 0));
+  p->set_receivers({{0, {9.6, 0.0, 1.0}, {0.0, 0.0, 0.0}}, {5, {40.0, 0.0, 1.0}, {0, 0, 0}}});
+  const auto one = p->plan(frame(0.2, {0, 0, 1}, {0, 0, 0}, 1));
+  REQUIRE(one.size() == 1);
+  CHECK(glm::distance(one[0].position, glm::dvec3(40.0, 0.0, 1.0)) < 1e-9);
+  // With room for two, the vehicle follows.
+  const auto two = p->plan(frame(0.2, {0, 0, 1}, {0, 0, 0}, 2));
+  REQUIRE(two.size() == 2);
+  CHECK(glm::distance(two[0].position, glm::dvec3(40.0, 0.0, 1.0)) < 1e-9);
+  CHECK(glm::distance(two[1].position, glm::dvec3(9.6, 0.0, 1.0)) < 1e-9);
+  // priority=distance keeps the old order: nearest first.
+  auto d = make_planner("ambisim", planner_params_from_cli("ambisim", {"priority=distance"}));
+  d->set_receivers({{0, {9.6, 0.0, 1.0}, {0.0, 0.0, 0.0}}, {5, {40.0, 0.0, 1.0}, {0, 0, 0}}});
+  const auto near = d->plan(frame(0.0, {0, 0, 1}, {0, 0, 0}, 1));
+  REQUIRE(near.size() == 1);
+  CHECK(glm::distance(near[0].position, glm::dvec3(9.6, 0.0, 1.0)) < 1e-9);
 }
 
 TEST_CASE("ambisim lookups never step when a probe arrives, and fade in over fade_s", "[ambisim]") {
