@@ -6,6 +6,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "policies/default_ambient.h"
+
 namespace ambisim {
 namespace {
 
@@ -37,18 +39,6 @@ double log_change(const Sh9Rgb& a, const Sh9Rgb& b) {
 
 double luminance_l00(const Sh9Rgb& sh) {
   return 0.2126 * sh.c[0].x + 0.7152 * sh.c[0].y + 0.0722 * sh.c[0].z;
-}
-
-// Cold start before any probe: a plausible sky above and ground below (the hemisphere
-// baseline's default), flagged as a fallback.
-Sh9Rgb default_ambient() {
-  const double a = 1.0, b = 0.25;  // sky and ground radiance
-  Sh9Rgb sh;
-  const float l00 = static_cast<float>(std::sqrt(kPi) * (a + b));
-  const float l10 = static_cast<float>(kPi * 0.488602511902919921 * (a - b));
-  sh.c[0] = Rgb(l00);
-  sh.c[2] = Rgb(l10);
-  return sh;
 }
 
 }  // namespace
@@ -106,7 +96,7 @@ DemandPlanner::DemandPlanner(const PlannerParams& params)
       fade_rate_(params.number("fade_rate")),
       fade_max_s_(params.number("fade_max_s")),
       adapt_de_(params.number("adapt_rel")),
-      default_sh_(default_ambient()) {
+      default_sh_(default_ambient_sh()) {
   prediction_.enabled = true;
   prediction_.lookahead_s = params.number("lookahead_s");
   prediction_.route = params.boolean("route");
