@@ -732,7 +732,12 @@ std::uint32_t ShGraphCore<Dim>::refresh_masks(std::int32_t i, const Focus& focus
   if (fc >= 0) {
     for (int c = 0; c < kChildren; ++c) {
       bool cf = false;
-      const std::uint32_t m = refresh_masks(fc + c, focus, &cf);
+      std::uint32_t m = 0;
+      if (naive_ || nodes_[fc + c].first_child >= 0) {
+        m = refresh_masks(fc + c, focus, &cf);
+      } else {
+        nodes_[fc + c].children_with_coefficients = 0;  // a leaf: what the call would do
+      }
       const bool has = nodes_[fc + c].anchor->anchor.has_coefficients();
       if (has || m != 0) mask |= 1u << c;
       if (m != 0 || (has && c != kCentreChild)) own_data = true;
