@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   ambisim::cli::add_sweep_command(app);
   ambisim::cli::add_plot_command(app);
   ambisim::cli::add_viz_command(app);
+  ambisim::cli::add_bench_chart_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -95,14 +95,14 @@ std::optional<double> document_speed(const nlohmann::json& result) {
   return std::nullopt;
 }
 
-vtkSmartPointer<vtkTable> make_table(const ChartSeries& s, bool log_x) {
+vtkSmartPointer<vtkTable> make_table(const ChartSeries& s, bool log_x, bool log_y) {
   vtkNew<vtkFloatArray> xs, ys;
   xs->SetName("x");
   ys->SetName(s.name.c_str());
   std::vector<std::pair<double, double>> pts;
   for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
     if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
-    if (log_x && s.x[i] <= 0.0) continue;
+    if ((log_x && s.x[i] <= 0.0) || (log_y && s.y[i] <= 0.0)) continue;
     pts.emplace_back(s.x[i], s.y[i]);
   }
   for (const auto& [x, y] : pts) {
@@ -123,14 +123,17 @@ void style_axis(vtkAxis* axis, const std::string& title) {
   axis->GetGridPen()->SetColor(225, 225, 225, 255);
 }
 
-// Data range of a panel's finite points (x > 0 when log_x).
+// Data range of a panel's finite points (x > 0 when log_x, y > 0 when log_y).
 bool data_range(const ChartPanel& p, double x[2], double y[2]) {
   x[0] = y[0] = std::numeric_limits<double>::infinity();
   x[1] = y[1] = -std::numeric_limits<double>::infinity();
   bool any = false;
   for (const auto& s : p.series) {
     for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
-      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i]) || (p.log_x && s.x[i] <= 0)) continue;
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i]) || (p.log_x && s.x[i] <= 0) ||
+          (p.log_y && s.y[i] <= 0)) {
+        continue;
+      }
       x[0] = std::min(x[0], s.x[i]);
       x[1] = std::max(x[1], s.x[i]);
       y[0] = std::min(y[0], s.y[i]);
@@ -151,7 +154,7 @@ void fill_chart(vtkChartXY* chart, const ChartPanel& p) {
   const std::size_t count = p.series.size();
   for (std::size_t k = 0; k < count; ++k) {
     const ChartSeries& s = p.series[k];
-    auto table = make_table(s, p.log_x);
+    auto table = make_table(s, p.log_x, p.log_y);
     if (table->GetNumberOfRows() == 0) continue;
     vtkPlot* plot = chart->AddPlot(vtkChart::LINE);
     plot->SetInputData(table, 0, 1);
@@ -193,6 +196,18 @@ void fill_chart(vtkChartXY* chart, const ChartPanel& p) {
     bx->SetRange(xr[0] - pad, xr[1] + pad);
   }
   bx->SetBehavior(vtkAxis::FIXED);
+  if (p.log_y) {
+    if (!(yr[0] > 0.0)) {  // no data
+      yr[0] = 1.0;
+      yr[1] = 10.0;
+    }
+    // Room at the top for the legend, in decades.
+    const double decades = std::max(1.0, std::log10(yr[1] / yr[0]));
+    ly->SetLogScale(true);
+    ly->SetUnscaledRange(yr[0] / 1.5, yr[1] * std::pow(10.0, decades * (0.1 + 0.06 * shown)));
+    ly->SetBehavior(vtkAxis::FIXED);
+    return;
+  }
   double y0 = p.y_from_zero ? std::min(0.0, yr[0]) : yr[0];
   double y1 = yr[1];
   if (y1 <= y0) y1 = y0 + 1.0;

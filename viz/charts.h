@@ -44,6 +44,7 @@ struct ChartPanel {
   std::string title, x_label, y_label;
   std::vector<ChartSeries> series;
   bool log_x = false;
+  bool log_y = false;  // log scale (points with y <= 0 dropped; y_from_zero ignored)
   bool y_from_zero = true;
   bool stagger_widths = false;  // earlier series drawn wider (equal results stay visible)
 };
