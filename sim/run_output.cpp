@@ -60,6 +60,9 @@ nlohmann::ordered_json result_json(const Scenario& scenario, const RunIdentity& 
   j["exposure"] = result.exposure;
   j["summary"] = RunMetrics::to_json(result.summary);
   j["captures"] = {{"started", result.captures_started}, {"delivered", result.captures_delivered}};
+  j["reference"] = {{"captures", result.reference_captures},
+                    {"receiver_frames", result.reference_slots},
+                    {"interpolated", result.reference_interpolated}};
   j["series"] = series_json(result);
   return j;
 }

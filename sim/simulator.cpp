@@ -63,6 +63,11 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
   // sees a receiver's irradiance (the exposure only scales those).
   settings.exposure = reference != nullptr ? reference->exposure : 1.0;
   result.exposure = reference != nullptr ? reference->exposure : 0.0;
+  if (reference != nullptr) {
+    result.reference_captures = reference->captures;
+    result.reference_slots = static_cast<std::int64_t>(reference->ids.size());
+    result.reference_interpolated = reference->slots_interpolated;
+  }
   RunMetrics metrics(settings);
   const std::size_t nn = settings.normals.size();
 

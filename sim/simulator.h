@@ -58,6 +58,11 @@ struct RunResult {
   std::int64_t captures_started = 0;
   std::int64_t captures_delivered = 0;
   double exposure = 0.0;
+  // What the reference cost (0 without one): captures rendered, receiver-frames it serves,
+  // and how many of those were interpolated in time rather than captured.
+  std::int64_t reference_captures = 0;
+  std::int64_t reference_slots = 0;
+  std::int64_t reference_interpolated = 0;
   std::vector<glm::dvec3> camera_path;  // camera position per frame
   std::vector<Snapshot> snapshots;
 };
