@@ -1,12 +1,15 @@
 #include "viz/bench_chart.h"
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <map>
+#include <regex>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "sim/input_error.h"
-#include "sim/json_reader.h"
 #include "viz/charts.h"
 
 namespace ambisim {
@@ -41,10 +44,30 @@ double number_or(const nlohmann::json& j, const char* key, double fallback) {
   return it != j.end() && it->is_number() ? it->get<double>() : fallback;
 }
 
+// Google Benchmark writes NaN (and inf) for the spread of a counter that does not vary, which is
+// not JSON: such values become null before parsing.
+nlohmann::json load_benchmark_json(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw InputError(path, "", "no such file");
+  if (fs::is_directory(path, ec)) throw InputError(path, "", "is a directory, not a JSON file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", "cannot be opened for reading");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  static const std::regex kNonFinite(R"((:\s*)-?(NaN|nan|inf|Infinity)\b)");
+  const std::string text = std::regex_replace(buffer.str(), kNonFinite, "$1null");
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(path, "", std::string("invalid JSON: ") + e.what());
+  }
+}
+
 }  // namespace
 
 std::vector<PlannerBenchPoint> read_planner_bench(const std::string& path) {
-  const nlohmann::json doc = load_json_file(path);
+  const nlohmann::json doc = load_benchmark_json(path);
   if (!doc.is_object() || !doc.contains("benchmarks") || !doc["benchmarks"].is_array()) {
     throw InputError(path, "/benchmarks",
                      "missing: not Google Benchmark JSON (--benchmark_out_format=json)");

@@ -90,6 +90,20 @@ TEST_CASE("bench-chart prefers medians when repetitions were run", "[bench_chart
   CHECK(pts[0].ns == 60.0);
 }
 
+TEST_CASE("bench-chart reads Google Benchmark's NaN spreads", "[bench_chart]") {
+  const auto p = fs::temp_directory_path() / "ambisim_bench_nan.json";
+  std::ofstream(p) << R"({"benchmarks": [
+    {"name": "BM_Lookup/grid/1000_median", "run_name": "BM_Lookup/grid/1000",
+     "run_type": "aggregate", "aggregate_name": "median", "real_time": 60, "time_unit": "ns",
+     "live": 1000, "fell_back": 0},
+    {"name": "BM_Lookup/grid/1000_cv", "run_name": "BM_Lookup/grid/1000",
+     "run_type": "aggregate", "aggregate_name": "cv", "real_time": 0.01, "time_unit": "ns",
+     "live": 0, "fell_back": NaN, "nodes": -inf}]})";
+  const auto pts = ambisim::read_planner_bench(p.string());
+  REQUIRE(pts.size() == 1);
+  CHECK(pts[0].ns == 60.0);
+}
+
 TEST_CASE("bench-chart draws a non-blank PNG and refuses to overwrite it", "[bench_chart]") {
   const auto in = write_json("ambisim_bench_c.json", sample());
   const auto png = fs::temp_directory_path() / "ambisim_bench_chart.png";
