@@ -10,7 +10,8 @@
 // the next frame) while the camera sweeps the map in lanes 40 m apart at 3 m per frame
 // (180 m/s; the camera-centred grid fills standing still). A fill stops at N, when the planner
 // has not grown for 3000 frames (it holds no more), or after a wall-time limit (90 s; 300 s
-// for `nearest`, whose fill is quadratic); the counters say how many probes it actually held
+// for `nearest` and 180 s for the octrees, whose fills are quadratic); the counters say how many
+// probes it actually held
 // (`live`), how long the fill took (`fill_s`), and the bytes per live probe
 // (PlannerStats::bytes / live_probes, structure included).
 //
@@ -21,6 +22,7 @@
 //   one capture in flight at a time, usable 6 frames after its start), the camera driving on at
 //   30 m/s: plan + started + update + deliver, with update() alone as the counter `update_us`.
 //   The planner keeps its state across iterations; `live` is the count at the end.
+// BM_MemoryL1fp16: bytes per live probe at 1e4 with order=L1, precision=fp16 (24-byte sets).
 //
 //   build-perf/bench/bench_planners --benchmark_out=planners.json --benchmark_out_format=json
 #include <benchmark/benchmark.h>
@@ -131,6 +133,7 @@ Setup setup_for(const std::string& planner, std::int64_t n) {
     s.fill_step_m = 0.0;  // camera-centred: it fills standing still (moving, it scrolls away)
   } else if (planner.rfind("octree", 0) == 0) {
     s.params = {"retention=lifetime", "lifetime_s=1e9"};
+    s.fill_budget_s = 180.0;  // every frame expires over every set: the fill is quadratic
   } else if (planner.rfind("shgraph", 0) == 0) {
     s.params = {"lifetime_s=1e9", "widen_cells=5"};
   } else if (planner == "ambisim") {
@@ -279,13 +282,17 @@ struct Filled {
   std::vector<glm::dvec3> points;
 };
 
-Filled& filled(const std::string& planner, std::int64_t n) {
+// `extra`: parameters added to the setup's (the compact-format memory benchmark).
+Filled& filled(const std::string& planner, std::int64_t n,
+               const std::vector<std::string>& extra = {}) {
   static Filled f;
-  const std::string key = planner + "/" + std::to_string(n);
+  std::string key = planner + "/" + std::to_string(n);
+  for (const auto& e : extra) key += "/" + e;
   if (f.key == key) return f;
   f.driver.reset();
   f.key = key;
-  const Setup s = setup_for(planner, n);
+  Setup s = setup_for(planner, n);
+  s.params.insert(s.params.end(), extra.begin(), extra.end());
   f.driver = std::make_unique<Driver>(s);
   f.fill_s = f.driver->fill(n);
   f.points.clear();
@@ -423,6 +430,15 @@ void BM_RoadClosestS(benchmark::State& state) {
   state.counters["road_m"] = road.length();
 }
 
+// Memory per live probe with the most compact coefficient format (order=L1, precision=fp16:
+// 24 bytes per set instead of 108), at 1e4 live probes: what the structure itself costs.
+void BM_MemoryL1fp16(benchmark::State& state, const std::string& planner) {
+  const std::int64_t n = state.range(0);
+  Filled& f = filled(planner, n, {"order=L1", "precision=fp16"});
+  for (auto _ : state) benchmark::DoNotOptimize(f.driver->planner().stats());
+  report_stats(state, f.driver->planner(), n, f.fill_s);
+}
+
 // Planners with a structure to measure; constant, hemisphere and oracle hold no structure.
 const char* const kPlanners[] = {"nearest", "per_object", "grid",          "octree",    "octree+vp",
                                  "shgraph", "shgraph+vp", "shgraph+route", "shgraph2d", "ambisim"};
@@ -459,6 +475,12 @@ int main(int argc, char** argv) {
             ->Arg(n)
             ->Iterations(600)
             ->Unit(benchmark::kMicrosecond);
+      }
+      if (n == 10000 && planner != "nearest") {  // nearest stores L2/fp32 only
+        benchmark::RegisterBenchmark(("BM_MemoryL1fp16/" + planner).c_str(), BM_MemoryL1fp16,
+                                     planner)
+            ->Arg(n)
+            ->Iterations(1);
       }
     }
   }
