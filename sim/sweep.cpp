@@ -343,7 +343,23 @@ SweepReport run_sweep(const SweepSpec& spec, const std::string& out_dir,
     return future.get();
   };
 
-  // Runs of one reference are spread so that workers start on different references first.
+  // Execution order (the outputs do not depend on it): round robin over the reference
+  // variants, i.e. the first run of every variant, then the second of every variant, ... so
+  // that parallel workers compute different references at once instead of waiting for the one
+  // reference their neighbour is computing.
+  {
+    std::map<std::uint64_t, std::size_t> group_of;
+    std::vector<std::size_t> count;
+    std::vector<std::pair<std::pair<std::size_t, std::size_t>, const RunSpec*>> keyed;
+    for (const RunSpec* r : todo) {
+      const auto [it, added] = group_of.try_emplace(r->scenario.reference_hash(), count.size());
+      if (added) count.push_back(0);
+      keyed.push_back({{count[it->second]++, it->second}, r});
+    }
+    std::stable_sort(keyed.begin(), keyed.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (std::size_t k = 0; k < todo.size(); ++k) todo[k] = keyed[k].second;
+  }
   std::atomic<std::size_t> next{0};
   std::size_t done = 0;
   const auto t0 = std::chrono::steady_clock::now();
