@@ -18,10 +18,11 @@ std::string CoefficientFormat::name() const {
   return std::string(bands == 2 ? "L1" : "L2") + (half ? "/fp16" : "/fp32");
 }
 
-std::vector<ParamSpec> coefficient_format_params() {
+std::vector<ParamSpec> coefficient_format_params(const std::string& default_precision) {
   return {choice_param("order", "L2", {"L1", "L2"},
                        "SH order stored: L1 = 4 coefficients per channel, L2 = 9"),
-          choice_param("precision", "fp32", {"fp32", "fp16"}, "storage precision of coefficients")};
+          choice_param("precision", default_precision, {"fp32", "fp16"},
+                       "storage precision of coefficients")};
 }
 
 CoefficientFormat coefficient_format_from(const PlannerParams& params) {

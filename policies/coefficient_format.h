@@ -26,8 +26,8 @@ struct CoefficientFormat {
 };
 
 // The two shared planner parameters: "order" (choice "L1" | "L2", default L2) and
-// "precision" (choice "fp32" | "fp16", default fp32).
-std::vector<ParamSpec> coefficient_format_params();
+// "precision" (choice "fp32" | "fp16", default `default_precision`).
+std::vector<ParamSpec> coefficient_format_params(const std::string& default_precision = "fp32");
 CoefficientFormat coefficient_format_from(const PlannerParams& params);
 
 }  // namespace ambisim

@@ -72,7 +72,9 @@ PlannerInfo DemandPlanner::info() {
                  "halve the spacing where a new probe disagrees with its neighbours"),
       number_param("adapt_rel", 0.25, Range::positive(),
                    "relative brightness disagreement that counts as a fast colour change")};
-  for (auto& s : coefficient_format_params()) specs.push_back(s);
+  // fp16 by default: measured on four scenarios it moves p95 by <= 0.01 dE00 and saves a third
+  // of the memory (README, "Model no more than a scene needs").
+  for (auto& s : coefficient_format_params("fp16")) specs.push_back(s);
   return {"ambisim",
           "ambisim's own: demand-driven captures at receivers and the predicted path, "
           "distance-graded spacing, faded interpolation patterns",

@@ -19,7 +19,8 @@ inline constexpr int kResultFormatVersion = 1;
 // old and new numbers. 2: the reference stops refining where interpolation predicts well.
 // 3: planners without data answer the default ambient instead of black.
 // 4: the ambisim planner's spacing and fades (forest_edge/flyover files changed themselves).
-inline constexpr int kResultsModelVersion = 4;
+// 5: ambisim ranks objects by need alone and stores fp16 by default.
+inline constexpr int kResultsModelVersion = 5;
 
 struct RunIdentity {
   std::string planner;
