@@ -360,6 +360,9 @@ SweepReport run_sweep(const SweepSpec& spec, const std::string& out_dir,
                      [](const auto& a, const auto& b) { return a.first < b.first; });
     for (std::size_t k = 0; k < todo.size(); ++k) todo[k] = keyed[k].second;
   }
+  // What summary.csv needs of each run executed here, kept in memory (reading 234 result.json
+  // files back, series included, took 0.8 s of serial time); resumed runs are read from disk.
+  std::vector<std::optional<nlohmann::ordered_json>> fresh(all.size());
   std::atomic<std::size_t> next{0};
   std::size_t done = 0;
   const auto t0 = std::chrono::steady_clock::now();
@@ -382,6 +385,13 @@ SweepReport run_sweep(const SweepSpec& spec, const std::string& out_dir,
         write_run_output((runs_dir / r.id).string(), r.scenario,
                          {planner->name(), planner->params(), run_json(r)}, result,
                          Overwrite::allow);
+        nlohmann::ordered_json row;
+        row["planner"]["params"] = planner->params();
+        row["scenario"]["hash"] = hex64(r.scenario.hash());
+        row["summary"] = RunMetrics::to_json(result.summary);
+        row["timing"] = result.timing.to_json();
+        std::lock_guard lock(mutex);
+        fresh[r.index] = std::move(row);
       } catch (...) {
         std::lock_guard lock(mutex);
         if (!failure) failure = std::current_exception();
@@ -412,8 +422,11 @@ SweepReport run_sweep(const SweepSpec& spec, const std::string& out_dir,
   std::string summary, timing;
   std::vector<std::string> summary_header, timing_header;
   for (const auto& r : all) {
-    const auto j = read_result(runs_dir / r.id / "result.json");
-    if (!j || !j->contains("run") || (*j)["run"].value("hash", "") != hex64(r.run_hash)) continue;
+    auto j = std::move(fresh[r.index]);
+    if (!j) {
+      j = read_result(runs_dir / r.id / "result.json");
+      if (!j || !j->contains("run") || (*j)["run"].value("hash", "") != hex64(r.run_hash)) continue;
+    }
     std::vector<std::pair<std::string, std::string>> cols = {
         {"run", r.id},
         {"scenario", r.scenario.name},
