@@ -8,43 +8,17 @@
 
 #include "policies/default_ambient.h"
 #include "policies/registry.h"
+#include "scenario_fixtures.h"
 #include "sim/reference_track.h"
 #include "sim/run_output.h"
 #include "sim/scenario.h"
 #include "sim/world.h"
 
 using namespace ambisim;
+using ambisim::test::short_scenarios;
+using ambisim::test::world_for;
 
 namespace {
-
-// Every scenario file, cut to its first `seconds` with a cheap reference.
-std::vector<Scenario> short_scenarios(double seconds) {
-  std::vector<std::string> files;
-  for (const auto& e :
-       std::filesystem::directory_iterator(std::string(AMBISIM_SOURCE_DIR) + "/scenarios")) {
-    if (e.path().extension() == ".json" && e.path().stem() != "default_world") {
-      files.push_back(e.path().string());
-    }
-  }
-  std::sort(files.begin(), files.end());
-  std::vector<Scenario> out;
-  for (const auto& f : files) {
-    nlohmann::json doc = load_json_file(f);
-    doc["frames"]["duration_s"] = seconds;
-    doc["reference"] = {{"face_size", 8}, {"interval_s", 0.1}};
-    out.push_back(parse_scenario(doc, f));
-  }
-  return out;
-}
-
-const World& world_for(const WorldParams& p) {
-  static std::map<std::string, std::unique_ptr<World>> cache;
-  const std::string key =
-      nlohmann::json{{"seed", p.seed}, {"size", {p.size_m.x, p.size_m.y}}}.dump();
-  auto& slot = cache[key];
-  if (!slot) slot = std::make_unique<World>(p);
-  return *slot;
-}
 
 bool finite(const Sh9Rgb& sh) {
   for (const auto& c : sh.c) {

@@ -9,6 +9,7 @@
 #include "policies/registry.h"
 #include "policies/shgraph.h"
 #include "policies/shgraph2d.h"
+#include "scenario_fixtures.h"
 #include "sim/json_reader.h"
 #include "sim/reference_track.h"
 #include "sim/run_output.h"
@@ -16,38 +17,10 @@
 #include "sim/world.h"
 
 using namespace ambisim;
+using ambisim::test::short_scenarios;
+using ambisim::test::world_for;
 
 namespace {
-
-// Every scenario file, cut to `seconds` with a cheap reference.
-std::vector<Scenario> short_scenarios(double seconds) {
-  std::vector<std::string> files;
-  for (const auto& e :
-       std::filesystem::directory_iterator(std::string(AMBISIM_SOURCE_DIR) + "/scenarios")) {
-    if (e.path().extension() == ".json" && e.path().stem() != "default_world") {
-      files.push_back(e.path().string());
-    }
-  }
-  std::sort(files.begin(), files.end());
-  std::vector<Scenario> out;
-  for (const auto& f : files) {
-    nlohmann::json doc = load_json_file(f);
-    doc["frames"]["duration_s"] = seconds;
-    doc["reference"] = {{"face_size", 8}, {"interval_s", 0.1}};
-    out.push_back(parse_scenario(doc, f));
-  }
-  out.push_back(load_scenario(std::string(AMBISIM_SOURCE_DIR) + "/tests/data/small_drive.json"));
-  return out;
-}
-
-const World& world_for(const WorldParams& p) {
-  static std::map<std::string, std::unique_ptr<World>> cache;
-  const std::string key =
-      nlohmann::json{{"seed", p.seed}, {"size", {p.size_m.x, p.size_m.y}}}.dump();
-  auto& slot = cache[key];
-  if (!slot) slot = std::make_unique<World>(p);
-  return *slot;
-}
 
 std::unique_ptr<Planner> make(const std::string& name, const std::vector<std::string>& set,
                               bool naive) {
@@ -64,7 +37,7 @@ std::string everything(const Scenario& sc, const Planner& p, const RunResult& r)
 }  // namespace
 
 TEST_CASE("SHGraph fast paths give byte-identical results to the naive ones", "[shgraph]") {
-  const auto scenarios = short_scenarios(6.0);
+  const auto scenarios = short_scenarios(6.0, /*with_small_drive=*/true);
   for (const auto& sc : scenarios) {
     const World& world = world_for(sc.world);
     const auto reference = compute_reference_track(sc, world);

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "policies/registry.h"
+#include "scenario_fixtures.h"
 #include "sim/reference_track.h"
 #include "sim/run_output.h"
 #include "sim/scenario.h"
@@ -15,13 +16,7 @@ using namespace ambisim;
 
 namespace {
 
-const std::string kSmall = std::string(AMBISIM_SOURCE_DIR) + "/tests/data/small_drive.json";
-
-struct Fixture {
-  Scenario scenario = load_scenario(kSmall);
-  World world{scenario.world};
-  std::shared_ptr<const ReferenceTrack> reference = compute_reference_track(scenario, world);
-
+struct Fixture : test::SmallDrive {
   RunResult run(const std::string& planner) {
     auto p = make_planner(planner);
     return simulate(scenario, world, *reference, *p);

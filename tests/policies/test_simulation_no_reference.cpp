@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "policies/registry.h"
+#include "scenario_fixtures.h"
 #include "sim/reference_track.h"
 #include "sim/scenario.h"
 #include "sim/simulator.h"
@@ -15,16 +16,8 @@ using namespace ambisim;
 
 namespace {
 
-const std::string kSmall = std::string(AMBISIM_SOURCE_DIR) + "/tests/data/small_drive.json";
-
-struct Fixture {
-  Scenario scenario = load_scenario(kSmall);
-  World world{scenario.world};
-  std::shared_ptr<const ReferenceTrack> reference = compute_reference_track(scenario, world);
-};
-
-Fixture& fixture() {
-  static Fixture f;
+test::SmallDrive& fixture() {
+  static test::SmallDrive f;
   return f;
 }
 
