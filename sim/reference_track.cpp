@@ -118,29 +118,32 @@ std::shared_ptr<const ReferenceTrack> compute_reference_track(const Scenario& sc
   // by more than refine_de at any normal, the frame between them is captured too, recursively,
   // so abrupt true changes (a shadow edge, a cutting wall) are resolved frame by frame and only
   // smooth stretches are interpolated.
-  auto differs = [&](const Sample& a, const Sample& b) {
-    for (std::size_t m = 0; m < nn; ++m) {
-      if (display_difference(track->irradiance[a.slot * nn + m], track->irradiance[b.slot * nn + m],
-                             track->exposure) > scenario.reference.refine_de) {
+  // True if, at any normal, the displayed colour `expected(n)` differs from sample s's by more
+  // than refine_de.
+  auto departs = [&](auto&& expected, const Sample& s) {
+    for (std::size_t n = 0; n < nn; ++n) {
+      if (display_difference(expected(n), track->irradiance[s.slot * nn + n], track->exposure) >
+          scenario.reference.refine_de) {
         return true;
       }
     }
     return false;
   };
+  auto value = [&](const Sample& s) {
+    return [&track, &s, nn](std::size_t n) { return track->irradiance[s.slot * nn + n]; };
+  };
+  auto differs = [&](const Sample& a, const Sample& b) { return departs(value(a), b); };
   // A midpoint the linear interpolation of its interval's ends predicts to within refine_de
   // (at every normal) shows the change is smooth there: its halves are interpolated, not
   // captured again.
   auto mispredicted = [&](const Sample& a, const Sample& m, const Sample& b) {
     const float f = static_cast<float>((m.time - a.time) / (b.time - a.time));
-    for (std::size_t n = 0; n < nn; ++n) {
+    const auto lerp = [&](std::size_t n) {
       const Rgb& e0 = track->irradiance[a.slot * nn + n];
       const Rgb& e1 = track->irradiance[b.slot * nn + n];
-      if (display_difference(e0 + f * (e1 - e0), track->irradiance[m.slot * nn + n],
-                             track->exposure) > scenario.reference.refine_de) {
-        return true;
-      }
-    }
-    return false;
+      return e0 + f * (e1 - e0);
+    };
+    return departs(lerp, m);
   };
   for (auto& [id, samples] : by_receiver) {
     std::vector<std::size_t>& keys = keys_of[id];
