@@ -4,7 +4,7 @@
 #include <iostream>
 
 #include "apps/commands.h"
-#include "sim/input_error.h"
+#include "sim/base/input_error.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"ambisim: ambient-light probe planning simulator"};

@@ -8,13 +8,13 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
-#include "sim/capture.h"
-#include "sim/cube_cross.h"
-#include "sim/input_error.h"
-#include "sim/irradiance_reference.h"
-#include "sim/scenario_file.h"
-#include "sim/sh_projection.h"
-#include "sim/tone_map.h"
+#include "sim/base/input_error.h"
+#include "sim/colour/tone_map.h"
+#include "sim/render/capture.h"
+#include "sim/render/cube_cross.h"
+#include "sim/scenario/scenario_file.h"
+#include "sim/sh/irradiance_reference.h"
+#include "sim/sh/sh_projection.h"
 #include "viz/png_writer.h"
 
 namespace ambisim::cli {

@@ -6,11 +6,11 @@
 #include <memory>
 
 #include "apps/commands.h"
-#include "policies/registry.h"
-#include "sim/reference_track.h"
-#include "sim/run_output.h"
-#include "sim/scenario.h"
-#include "sim/world.h"
+#include "policies/registry/registry.h"
+#include "sim/run/reference_track.h"
+#include "sim/run/run_output.h"
+#include "sim/scenario/scenario.h"
+#include "sim/world/world.h"
 
 namespace ambisim::cli {
 namespace {

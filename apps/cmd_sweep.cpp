@@ -7,9 +7,9 @@
 #include <thread>
 
 #include "apps/commands.h"
-#include "policies/registry.h"
-#include "sim/input_error.h"
-#include "sim/sweep.h"
+#include "policies/registry/registry.h"
+#include "sim/base/input_error.h"
+#include "sim/run/sweep.h"
 
 namespace ambisim::cli {
 namespace {

@@ -3,9 +3,9 @@
 #include <memory>
 
 #include "apps/commands.h"
-#include "sim/scenario_file.h"
-#include "sim/world.h"
-#include "sim/world_map.h"
+#include "sim/scenario/scenario_file.h"
+#include "sim/world/world.h"
+#include "sim/world/world_map.h"
 #include "viz/png_writer.h"
 
 namespace ambisim::cli {

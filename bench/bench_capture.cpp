@@ -4,9 +4,9 @@
 
 #include <glm/geometric.hpp>
 
-#include "sim/capture.h"
-#include "sim/landmarks.h"
-#include "sim/world.h"
+#include "sim/render/capture.h"
+#include "sim/world/landmarks.h"
+#include "sim/world/world.h"
 
 using namespace ambisim;
 

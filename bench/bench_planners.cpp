@@ -4,7 +4,7 @@
 //
 // No rendering: a driver flies the camera over the default 4 km world and delivers every capture
 // a planner starts with synthetic coefficients (a smooth function of position). It calls the
-// planner in the simulator's order (sim/simulator.cpp): set_receivers, plan, started/refused,
+// planner in the simulator's order (sim/run/simulator.cpp): set_receivers, plan, started/refused,
 // update, deliver. To reach N live probes a planner gets parameters that let it hold N (no
 // expiry, caps at N, a grid of N points) and a large budget (256 captures per frame, delivered
 // the next frame) while the camera sweeps the map in lanes 40 m apart at 3 m per frame
@@ -39,12 +39,12 @@
 
 #include <glm/geometric.hpp>
 
-#include "policies/registry.h"
-#include "policies/shgraph.h"
-#include "policies/shgraph2d.h"
-#include "sim/spline.h"
-#include "sim/world.h"
-#include "sim/world_queries.h"
+#include "policies/registry/registry.h"
+#include "policies/thesis/shgraph.h"
+#include "policies/thesis/shgraph2d.h"
+#include "sim/world/spline.h"
+#include "sim/world/world.h"
+#include "sim/world/world_queries.h"
 
 using namespace ambisim;
 
@@ -412,7 +412,7 @@ void BM_LookupNaive(benchmark::State& state) {
 }
 
 // What `+route` prediction costs per call: Spline3::closest_s of the default world's road
-// (sim/spline.h) at points within 15 m of it. ShGraph and octree planners call it in plan()
+// (sim/world/spline.h) at points within 15 m of it. ShGraph and octree planners call it in plan()
 // and update(), so every frame.
 void BM_RoadClosestS(benchmark::State& state) {
   const Spline3& road = world().road();

@@ -16,11 +16,11 @@
 #include <memory>
 #include <string>
 
-#include "policies/registry.h"
-#include "sim/reference_track.h"
-#include "sim/scenario.h"
-#include "sim/simulator.h"
-#include "sim/world.h"
+#include "policies/registry/registry.h"
+#include "sim/run/reference_track.h"
+#include "sim/run/simulator.h"
+#include "sim/scenario/scenario.h"
+#include "sim/world/world.h"
 
 using namespace ambisim;
 

@@ -8,8 +8,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "sim/irradiance_reference.h"
-#include "sim/sh_projection.h"
+#include "sim/sh/irradiance_reference.h"
+#include "sim/sh/sh_projection.h"
 
 namespace {
 

@@ -8,7 +8,7 @@ AMBISIM_BUILD="${AMBISIM_BUILD:-$AMBISIM_ROOT/build}"
 
 # What each package is for is listed in the README ("Dependencies").
 AMBISIM_PACKAGES=(cmake g++ ninja-build pkg-config libglm-dev libeigen3-dev nlohmann-json3-dev
-  catch2 libcli11-dev libbenchmark-dev libvtk9-dev xvfb xauth)
+  catch2 libcli11-dev libbenchmark-dev libvtk9-dev xvfb xauth python3 clang-format)
 
 ambisim_install_packages() {
   local missing=()

@@ -16,14 +16,15 @@ if [ "${AMBISIM_SANITIZER_PASS:-1}" != "0" ]; then
   cmake -S "$AMBISIM_ROOT" -B "$asan" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DAMBISIM_SANITIZE=ON -DAMBISIM_WITH_VIZ=OFF \
     -DAMBISIM_WITH_BENCH=OFF >/dev/null
-  cmake --build "$asan" -j "$jobs" --target test_sim test_policies
+  cmake --build "$asan" -j "$jobs" --target test_sim test_policies test_system
   # Leak checks on, explicitly, so that a restricted environment fails loudly.
   export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1"
   export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
-  echo "sanitizer pass (ASan + UBSan): test_sim, test_policies" >&2
+  echo "sanitizer pass (ASan + UBSan): test_sim, test_policies, test_system" >&2
   # Catch2 skips hidden tests ([.slow] and the like) unless asked for.
   "$asan/tests/test_sim"
   "$asan/tests/test_policies"
+  "$asan/tests/test_system"
   unset ASAN_OPTIONS UBSAN_OPTIONS
 fi
 

@@ -2,7 +2,7 @@
 // The one interface every sampling planner implements (OMPL-style: the simulator, the sweep
 // and the shared contract test only ever see this). Implementations live in policies/.
 //
-// The contract, per frame (see sim/simulator.cpp):
+// The contract, per frame (see sim/run/simulator.cpp):
 //   1. plan(ctx)      -> capture requests in priority order. The simulator starts at most
 //                        ctx.startable_captures of them, in order; each one it does not start
 //                        is refused (counted, and reported through refused()).
@@ -20,7 +20,7 @@
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
-#include "sim/sh9.h"
+#include "sim/sh/sh9.h"
 
 namespace ambisim {
 

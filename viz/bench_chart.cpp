@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/input_error.h"
+#include "sim/base/input_error.h"
 #include "viz/charts.h"
 
 namespace ambisim {

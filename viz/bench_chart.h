@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/output_file.h"
+#include "sim/base/output_file.h"
 
 namespace ambisim {
 

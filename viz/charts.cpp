@@ -28,8 +28,8 @@
 #include <vtkVector.h>
 #include <nlohmann/json.hpp>
 
-#include "sim/input_error.h"
-#include "sim/json_reader.h"
+#include "sim/base/input_error.h"
+#include "sim/base/json_reader.h"
 #include "viz/csv_table.h"
 #include "viz/render_capture.h"
 

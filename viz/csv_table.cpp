@@ -5,7 +5,7 @@
 #include <fstream>
 #include <limits>
 
-#include "sim/input_error.h"
+#include "sim/base/input_error.h"
 
 namespace ambisim {
 

@@ -9,7 +9,7 @@
 #include <vtkPointData.h>
 #include <vtkUnsignedCharArray.h>
 
-#include "sim/input_error.h"
+#include "sim/base/input_error.h"
 
 namespace ambisim {
 

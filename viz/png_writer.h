@@ -2,8 +2,8 @@
 // PNG output of 8-bit images through VTK's PNG writer (atomic: never a partial file).
 #include <string>
 
-#include "sim/image.h"
-#include "sim/output_file.h"
+#include "sim/base/image.h"
+#include "sim/base/output_file.h"
 
 class vtkImageData;
 

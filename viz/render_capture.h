@@ -2,8 +2,8 @@
 // Grabbing an offscreen VTK render window into an 8-bit image and a PNG (atomic writes).
 #include <string>
 
-#include "sim/image.h"
-#include "sim/output_file.h"
+#include "sim/base/image.h"
+#include "sim/base/output_file.h"
 
 class vtkRenderWindow;
 

@@ -41,12 +41,12 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
-#include "sim/cielab.h"
-#include "sim/input_error.h"
-#include "sim/json_reader.h"
-#include "sim/scenario.h"
-#include "sim/tone_map.h"
-#include "sim/world.h"
+#include "sim/base/input_error.h"
+#include "sim/base/json_reader.h"
+#include "sim/colour/cielab.h"
+#include "sim/colour/tone_map.h"
+#include "sim/scenario/scenario.h"
+#include "sim/world/world.h"
 #include "viz/render_capture.h"
 
 namespace fs = std::filesystem;

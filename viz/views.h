@@ -21,8 +21,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "sim/output_file.h"
-#include "sim/sh9.h"
+#include "sim/base/output_file.h"
+#include "sim/sh/sh9.h"
 
 namespace ambisim {
 

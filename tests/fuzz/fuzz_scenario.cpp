@@ -9,12 +9,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/camera_path.h"
-#include "sim/capture_budget.h"
-#include "sim/frame_schedule.h"
-#include "sim/input_error.h"
-#include "sim/scenario.h"
-#include "sim/speed_profile.h"
+#include "sim/base/input_error.h"
+#include "sim/scenario/camera_path.h"
+#include "sim/scenario/capture_budget.h"
+#include "sim/scenario/frame_schedule.h"
+#include "sim/scenario/scenario.h"
+#include "sim/scenario/speed_profile.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -9,9 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "policies/registry.h"
-#include "sim/input_error.h"
-#include "sim/sweep.h"
+#include "policies/registry/registry.h"
+#include "sim/base/input_error.h"
+#include "sim/run/sweep.h"
 
 #ifndef AMBISIM_SOURCE_DIR
 #error "AMBISIM_SOURCE_DIR must be defined"

@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/input_error.h"
+#include "sim/base/input_error.h"
 #include "viz/bench_chart.h"
 #include "viz/png_writer.h"
 

@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/input_error.h"
+#include "sim/base/input_error.h"
 #include "viz/charts.h"
 #include "viz/csv_table.h"
 #include "viz/png_writer.h"

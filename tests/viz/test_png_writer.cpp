@@ -2,7 +2,7 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 
-#include "sim/input_error.h"
+#include "sim/base/input_error.h"
 #include "viz/png_writer.h"
 
 TEST_CASE("png round trip keeps every pixel and the top row on top", "[png]") {

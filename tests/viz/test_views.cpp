@@ -21,8 +21,8 @@
 #include <vtkXMLUnstructuredGridReader.h>
 #include <nlohmann/json.hpp>
 
-#include "sim/input_error.h"
-#include "sim/json_reader.h"
+#include "sim/base/input_error.h"
+#include "sim/base/json_reader.h"
 #include "viz/png_writer.h"
 #include "viz/views.h"
 

@@ -1,0 +1,452 @@
+#include "policies/ambisim/demand_planner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+#include "policies/core/default_ambient.h"
+
+namespace ambisim {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The largest change between two coefficient sets as a log ratio of irradiance, over the six
+// axis normals and the three channels (channels darker than 1% of the brightest are lifted to
+// it, so that a near-black channel does not dominate).
+double log_change(const Sh9Rgb& a, const Sh9Rgb& b) {
+  static const glm::dvec3 kAxes[] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                     {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
+  Rgb ea[6], eb[6];
+  double top = 0.0;
+  for (int k = 0; k < 6; ++k) {
+    ea[k] = sh_irradiance(a, kAxes[k]);
+    eb[k] = sh_irradiance(b, kAxes[k]);
+    for (int c = 0; c < 3; ++c) top = std::max({top, double(ea[k][c]), double(eb[k][c])});
+  }
+  const double floor = std::max(1e-12, 0.01 * top);
+  double worst = 0.0;
+  for (int k = 0; k < 6; ++k) {
+    for (int c = 0; c < 3; ++c) {
+      const double x = std::max(double(ea[k][c]), floor), y = std::max(double(eb[k][c]), floor);
+      worst = std::max(worst, std::abs(std::log(x / y)));
+    }
+  }
+  return worst;
+}
+
+double luminance_l00(const Sh9Rgb& sh) {
+  return 0.2126 * sh.c[0].x + 0.7152 * sh.c[0].y + 0.0722 * sh.c[0].z;
+}
+
+}  // namespace
+
+PlannerInfo DemandPlanner::info() {
+  std::vector<ParamSpec> specs = {
+      number_param("min_spacing_m", 3.0, Range::positive(), "probe spacing next to the camera (m)"),
+      number_param("spacing_per_m", 0.03, Range::closed(0.0, 10.0),
+                   "spacing grows by this much per metre of distance from the predicted camera"),
+      number_param("max_distance_m", 160.0, Range::positive(),
+                   "no captures farther than this from the camera; probes beyond 1.5x fade out"),
+      number_param("height_m", 1.2, Range::non_negative(),
+                   "height above the ground of path and ring captures"),
+      number_param("fade_s", 0.4, Range::non_negative(),
+                   "a new probe enters weights and values over this time; leaving ones too"),
+      number_param("lifetime_s", 60.0, Range::positive(), "probes are re-captured after this"),
+      integer_param("max_probes", 256, Range::closed(1, 1e7), "probes kept (farthest leave)"),
+      number_param("lookahead_s", 0.3, Range::closed(0.0, 10.0),
+                   "prediction beyond the capture latency"),
+      bool_param("route", true, "predict along the road when the camera is on it"),
+      choice_param("priority", "need", {"need", "distance"},
+                   "objects by need (worst-served first) or by distance to the camera"),
+      number_param("fade_rate", 2.0, Range::non_negative(),
+                   "a new probe fades in no faster than this change of log irradiance per "
+                   "second (0 = always fade_s)"),
+      number_param("fade_max_s", 2.0, Range::non_negative(), "longest fade-in of a new probe"),
+      bool_param("budget_spacing", true,
+                 "below 1 face per frame the near spacing grows as 1 / sqrt(faces per frame), "
+                 "up to 4 m: as many probes per area as the budget sustains"),
+      bool_param("adapt", true,
+                 "halve the spacing where a new probe disagrees with its neighbours"),
+      number_param("adapt_rel", 0.25, Range::positive(),
+                   "relative brightness disagreement that counts as a fast colour change")};
+  // fp16 by default: measured on four scenarios it moves p95 by <= 0.01 dE00 and saves a third
+  // of the memory (README, "Model no more than a scene needs").
+  for (auto& s : coefficient_format_params("fp16")) specs.push_back(s);
+  return {"ambisim",
+          "ambisim's own: demand-driven captures at receivers and the predicted path, "
+          "distance-graded spacing, faded interpolation patterns",
+          std::move(specs),
+          [](const PlannerParams& p) { return std::make_unique<DemandPlanner>(p); }};
+}
+
+DemandPlanner::DemandPlanner(const PlannerParams& params)
+    : params_(params),
+      format_(coefficient_format_from(params)),
+      min_spacing_(params.number("min_spacing_m")),
+      spacing_per_m_(params.number("spacing_per_m")),
+      max_distance_(params.number("max_distance_m")),
+      height_(params.number("height_m")),
+      fade_s_(params.number("fade_s")),
+      lifetime_s_(params.number("lifetime_s")),
+      max_probes_(static_cast<std::size_t>(params.integer("max_probes"))),
+      by_need_(params.choice("priority") == "need"),
+      adapt_(params.boolean("adapt")),
+      budget_spacing_(params.boolean("budget_spacing")),
+      fade_rate_(params.number("fade_rate")),
+      fade_max_s_(params.number("fade_max_s")),
+      adapt_de_(params.number("adapt_rel")),
+      default_sh_(default_ambient_sh()) {
+  prediction_.enabled = true;
+  prediction_.lookahead_s = params.number("lookahead_s");
+  prediction_.route = params.boolean("route");
+}
+
+double DemandPlanner::required_spacing(double distance_m) const {
+  return std::max(min_spacing_ * budget_scale_, spacing_per_m_ * distance_m);
+}
+
+void DemandPlanner::set_budget(double faces_per_frame) {
+  budget_scale_ = 1.0;
+  if (budget_spacing_ && faces_per_frame > 0.0 && faces_per_frame < 1.0) {
+    // Never coarser than 4 m, the near spacing of the coverage rule.
+    budget_scale_ = std::max(1.0, std::min(std::sqrt(1.0 / faces_per_frame), 4.0 / min_spacing_));
+  }
+}
+
+double DemandPlanner::fade_in_fraction(const Probe& q) const {
+  if (q.fade_in <= 0.0) return 1.0;
+  if (q.fade_in_start < 0.0) return 0.0;
+  return std::clamp((now_ - q.fade_in_start) / q.fade_in, 0.0, 1.0);
+}
+
+double DemandPlanner::presence(const Probe& q) const {
+  double f = fade_in_fraction(q);
+  if (q.fade_out_start >= 0.0) {
+    if (fade_s_ <= 0.0) return 0.0;
+    f *= std::clamp(1.0 - (now_ - q.fade_out_start) / fade_s_, 0.0, 1.0);
+  }
+  return f;
+}
+
+double DemandPlanner::kernel(const Probe& q, double d) const {
+  // Smooth, and continuous everywhere: a compact bump over 1.5 spacings (neighbours one
+  // spacing apart overlap, so weights change continuously as a receiver moves), plus a faint
+  // long tail so that a point outside every bump still blends its nearest probes smoothly
+  // instead of switching from one to the next.
+  const double r = 1.5 * q.spacing;
+  const double u = d / r;
+  const double bump = u < 1.0 ? (1.0 - u * u) * (1.0 - u * u) : 0.0;
+  const double u2 = u * u;
+  return bump + 1e-4 / (1.0 + u2 * u2);
+}
+
+bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* meta) const {
+  struct Candidate {
+    double weight;
+    double distance;
+    std::size_t index;
+  };
+  std::array<Candidate, 8> top{};
+  int count = 0;
+  double total = 0.0;
+  Sh9Rgb sum;
+  double time_sum = 0.0;
+  double nearest = std::numeric_limits<double>::infinity();
+  std::size_t nearest_index = 0;
+  for (std::size_t i = 0; i < probes_.size(); ++i) {
+    const Probe& q = probes_[i];
+    const double f = presence(q);
+    if (f <= 0.0) continue;
+    const double d = glm::distance(q.position, p);
+    if (d < nearest) {
+      nearest = d;
+      nearest_index = i;
+    }
+    const double w = kernel(q, d) * f;
+    if (w <= 0.0) continue;
+    // The value itself also enters gradually, from what was shown here before.
+    const double fin = q.fade_out_start >= 0.0 ? 1.0 : fade_in_fraction(q);
+    sum += sh_lerp(q.from, q.sh, static_cast<float>(fin)) * static_cast<float>(w);
+    total += w;
+    time_sum += w * q.data_time;
+    // Keep the 8 heaviest as the reported contributors.
+    if (count < 8) {
+      top[static_cast<std::size_t>(count++)] = {w, d, i};
+    } else {
+      auto lightest = std::min_element(
+          top.begin(), top.end(), [](const auto& a, const auto& b) { return a.weight < b.weight; });
+      if (w > lightest->weight) *lightest = {w, d, i};
+    }
+  }
+  if (total <= 0.0) {
+    if (!std::isfinite(nearest)) return false;
+    // Outside every probe's support: the nearest one, honestly reported as far away.
+    const Probe& q = probes_[nearest_index];
+    out = q.sh;
+    if (meta) {
+      meta->contributors[0] = {q.tag, 1.0f};
+      meta->contributor_count = 1;
+      meta->spacing_m = std::max(q.spacing * q.detail, 2.0 * nearest);
+      meta->data_time = q.data_time;
+    }
+    return true;
+  }
+  out = sum * static_cast<float>(1.0 / total);
+  if (meta) {
+    // Heaviest first (insertion sort of at most 8; ties by index for determinism).
+    for (int i = 1; i < count; ++i) {
+      for (int j = i; j > 0; --j) {
+        const Candidate& x = top[static_cast<std::size_t>(j)];
+        const Candidate& y = top[static_cast<std::size_t>(j - 1)];
+        if (x.weight > y.weight || (x.weight == y.weight && x.index < y.index)) {
+          std::swap(top[static_cast<std::size_t>(j)], top[static_cast<std::size_t>(j - 1)]);
+        } else {
+          break;
+        }
+      }
+    }
+    double closest = std::numeric_limits<double>::infinity();
+    std::size_t closest_index = top[0].index;
+    for (int k = 0; k < count; ++k) {
+      meta->contributors[k] = {probes_[top[k].index].tag,
+                               static_cast<float>(top[k].weight / total)};
+      if (top[k].distance < closest) {
+        closest = top[k].distance;
+        closest_index = top[k].index;
+      }
+    }
+    meta->contributor_count = count;
+    const Probe& q = probes_[closest_index];
+    meta->spacing_m = std::max(q.spacing * q.detail, 2.0 * closest);
+    meta->data_time = time_sum / total;
+  }
+  return true;
+}
+
+LookupResult DemandPlanner::lookup(const glm::dvec3& p) const {
+  LookupResult r;
+  if (!interpolate(p, r.sh, &r)) {
+    r.sh = default_sh_;
+    r.fell_back = true;
+    r.spacing_m = std::numeric_limits<double>::infinity();
+    r.data_time = now_;
+  }
+  return r;
+}
+
+double DemandPlanner::nearest_distance(const glm::dvec3& c, double* detail) const {
+  double best = std::numeric_limits<double>::infinity();
+  *detail = 1.0;
+  for (const auto& q : probes_) {
+    if (q.fade_out_start >= 0.0) continue;
+    const double d = glm::distance(q.position, c);
+    if (d < best) {
+      best = d;
+      *detail = q.detail;
+    }
+  }
+  for (const auto* m : {&planned_, &in_flight_}) {
+    for (const auto& [tag, f] : *m) best = std::min(best, glm::distance(f.position, c));
+  }
+  return best;
+}
+
+glm::dvec3 DemandPlanner::capture_point(const FrameContext& ctx, const glm::dvec3& p) const {
+  glm::dvec3 c = p;
+  if (ctx.world != nullptr && ctx.world->surface_height) {
+    c.z = std::max(c.z, ctx.world->surface_height(c.x, c.y) + 0.3);  // never inside a solid
+  }
+  return c;
+}
+
+std::vector<CaptureRequest> DemandPlanner::plan(const FrameContext& ctx) {
+  planned_.clear();
+  std::vector<CaptureRequest> out;
+  if (ctx.startable_captures <= 0) return out;
+  set_budget(ctx.faces_per_frame);
+  focus_ = make_focus(ctx, prediction_);
+  const double latency = std::isfinite(ctx.capture_latency_s()) ? ctx.capture_latency_s() : 0.0;
+  const double horizon = ctx.camera_cut ? 0.0 : latency + prediction_.lookahead_s;
+  // Path and ring captures stand where objects stand: on the terrain or the canopy top.
+  auto ground = [&](double x, double y) {
+    return ctx.world != nullptr && ctx.world->surface_height ? ctx.world->surface_height(x, y)
+                                                             : 0.0;
+  };
+  auto consider = [&](const glm::dvec3& c) {
+    if (static_cast<int>(out.size()) >= ctx.startable_captures) return;
+    const double d = focus_.distance(c);
+    if (d > max_distance_) return;
+    double detail = 1.0;
+    const double spacing = required_spacing(d);
+    const double gap = nearest_distance(c, &detail);
+    // Probes stand about one spacing apart: a point needs one when the nearest is farther
+    // than half the (locally refined) spacing.
+    if (gap <= 0.5 * spacing * detail) return;
+    const std::uint64_t tag = next_tag_++;
+    const glm::dvec3 at = capture_point(ctx, c);
+    planned_[tag] = {at, spacing * detail, ctx.time};
+    out.push_back({at, tag});
+  };
+  // 1. The objects the game will light, where they will be, by need: the worst-served first
+  // (their nearest probe farthest, relative to the spacing they need), so that when objects
+  // appear faster than they can be captured (a LOD switch) the budget covers them evenly.
+  // Among equally served objects (e.g. none has a probe yet) the nearest to the camera goes
+  // first. No object is served before the others just for being nearest: the player's own
+  // vehicle flies with the camera, needs a probe every few metres of its flight, and would
+  // take the whole budget (forest_edge b1 p95 13.0 with that rule, 6.5 without).
+  struct Ranked {
+    double need;
+    double distance;
+    std::size_t index;
+  };
+  std::vector<Ranked> order;
+  order.reserve(receivers_.size());
+  for (std::size_t i = 0; i < receivers_.size(); ++i) {
+    const ReceiverView& r = receivers_[i];
+    const glm::dvec3 at = r.position + horizon * r.velocity;
+    const double to_camera = glm::distance(r.position, ctx.camera_position);
+    double detail = 1.0;
+    const double need =
+        by_need_ ? nearest_distance(at, &detail) / (required_spacing(focus_.distance(at)) * detail)
+                 : -to_camera;
+    order.push_back({need, to_camera, i});
+  }
+  std::sort(order.begin(), order.end(), [](const Ranked& a, const Ranked& b) {
+    if (a.need != b.need) return a.need > b.need;
+    if (a.distance != b.distance) return a.distance < b.distance;
+    return a.index < b.index;
+  });
+  for (const Ranked& k : order) {
+    const ReceiverView& r = receivers_[k.index];
+    consider(r.position + horizon * r.velocity);
+  }
+  // 2. The camera's predicted path.
+  for (double t : {0.0, 0.5, 1.0, 2.0}) {
+    const glm::dvec3 p = predict_position(ctx, ctx.camera_cut ? t : horizon + t, prediction_.route,
+                                          prediction_.route_snap_m);
+    consider({p.x, p.y, ground(p.x, p.y) + height_});
+  }
+  // 3. Rings around the predicted camera, denser near it.
+  for (double r : {6.0, 12.0, 24.0, 48.0}) {
+    for (int a = 0; a < 8; ++a) {
+      const double phi = 2.0 * kPi * a / 8.0;
+      const double x = focus_.ahead.x + r * std::cos(phi), y = focus_.ahead.y + r * std::sin(phi);
+      consider({x, y, ground(x, y) + height_});
+    }
+  }
+  return out;
+}
+
+void DemandPlanner::started(std::uint64_t tag) {
+  auto it = planned_.find(tag);
+  if (it == planned_.end()) return;
+  in_flight_[tag] = it->second;
+  planned_.erase(it);
+}
+
+void DemandPlanner::refused(std::uint64_t tag) { planned_.erase(tag); }
+
+void DemandPlanner::deliver(const FinishedProbe& probe) {
+  auto it = in_flight_.find(probe.tag);
+  if (it == in_flight_.end()) return;
+  Probe q;
+  q.tag = probe.tag;
+  q.position = probe.position;
+  q.sh = format_.store(probe.sh);
+  q.spacing = it->second.spacing;
+  q.data_time = probe.requested_time;
+  Sh9Rgb before;
+  const bool had = interpolate(probe.position, before, nullptr);
+  q.from = had ? before : default_sh_;
+  if (adapt_ && had) {
+    const double a = luminance_l00(before), b = luminance_l00(q.sh);
+    if (std::abs(a - b) > adapt_de_ * std::max({a, b, 1e-9})) q.detail = 0.5;
+  }
+  if (!had) q.from = q.sh;  // the first probe anywhere: nothing to blend from but a guess
+  // The larger the change it brings, the slower it fades in (a change spread over more
+  // frames stays under the visible step per frame), up to fade_max_s.
+  q.fade_in = fade_s_;
+  if (fade_rate_ > 0.0 && had) {
+    q.fade_in =
+        std::clamp(log_change(q.from, q.sh) / fade_rate_, fade_s_, std::max(fade_s_, fade_max_s_));
+  }
+  in_flight_.erase(it);
+  probes_.push_back(q);
+}
+
+void DemandPlanner::update(const FrameContext& ctx) {
+  now_ = ctx.time;
+  focus_ = make_focus(ctx, prediction_);
+  for (auto& q : probes_) {
+    if (q.fade_in_start < 0.0) q.fade_in_start = now_;
+    if (q.fade_out_start >= 0.0) continue;
+    if (now_ - q.data_time > lifetime_s_ || focus_.distance(q.position) > 1.5 * max_distance_) {
+      q.fade_out_start = now_;
+    }
+  }
+  // Over the cap: the farthest leave (fading), never the ones the camera is using.
+  std::size_t staying = 0;
+  for (const auto& q : probes_) staying += q.fade_out_start < 0.0 ? 1 : 0;
+  while (staying > max_probes_) {
+    Probe* far = nullptr;
+    double far_d = -1.0;
+    for (auto& q : probes_) {
+      if (q.fade_out_start >= 0.0) continue;
+      const double d = focus_.distance(q.position);
+      if (d > far_d) {
+        far_d = d;
+        far = &q;
+      }
+    }
+    far->fade_out_start = now_;
+    --staying;
+  }
+  probes_.erase(std::remove_if(probes_.begin(), probes_.end(),
+                               [&](const Probe& q) {
+                                 return q.fade_out_start >= 0.0 &&
+                                        now_ - q.fade_out_start >= fade_s_;
+                               }),
+                probes_.end());
+}
+
+void DemandPlanner::set_receivers(const std::vector<ReceiverView>& receivers) {
+  receivers_ = receivers;
+}
+
+PlannerStats DemandPlanner::stats() const {
+  PlannerStats s;
+  s.live_probes = static_cast<std::int64_t>(probes_.size());
+  // Each probe stores its set and the set it fades from, plus position, spacing and times.
+  const std::size_t per_probe = 2 * format_.bytes_per_set() + sizeof(Probe) - 2 * sizeof(Sh9Rgb);
+  // std::map nodes: about 4 pointers of overhead each.
+  const std::size_t per_pending = sizeof(Pending) + sizeof(std::uint64_t) + 4 * sizeof(void*);
+  s.bytes = static_cast<std::int64_t>(probes_.size() * per_probe +
+                                      (planned_.size() + in_flight_.size()) * per_pending +
+                                      receivers_.size() * sizeof(ReceiverView));
+  return s;
+}
+
+void DemandPlanner::describe_nodes(std::vector<ProbeNodeView>& out) const {
+  for (const auto& q : probes_) {
+    ProbeNodeView v;
+    v.centre = q.position;
+    v.half_extent = glm::dvec3(0.5 * q.spacing * q.detail);
+    v.depth = q.detail < 1.0 ? 1 : 0;
+    v.has_data = true;
+    v.age_s = now_ - q.data_time;
+    v.sh = q.sh;
+    out.push_back(v);
+  }
+  for (const auto& [tag, f] : in_flight_) {
+    ProbeNodeView v;
+    v.centre = f.position;
+    v.half_extent = glm::dvec3(0.5 * f.spacing);
+    v.in_flight = true;
+    out.push_back(v);
+  }
+}
+
+}  // namespace ambisim

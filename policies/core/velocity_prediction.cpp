@@ -1,0 +1,49 @@
+#include "policies/core/velocity_prediction.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "sim/world/spline.h"
+
+namespace ambisim {
+
+double Focus::distance(const glm::dvec3& p) const {
+  const glm::dvec3 d = ahead - now;
+  const double len2 = glm::dot(d, d);
+  if (len2 <= 0.0) return glm::length(p - now);
+  const double t = std::clamp(glm::dot(p - now, d) / len2, 0.0, 1.0);
+  return glm::length(p - (now + t * d));
+}
+
+glm::dvec3 predict_position(const FrameContext& ctx, double horizon_s, bool route,
+                            double route_snap_m) {
+  const glm::dvec3 straight = ctx.camera_position + horizon_s * ctx.camera_velocity;
+  if (!route || ctx.world == nullptr || ctx.world->road == nullptr || ctx.world->road->empty()) {
+    return straight;
+  }
+  const Spline3& road = *ctx.world->road;
+  const double s = road.closest_s(ctx.camera_position);
+  const glm::dvec3 on_road = road.at(s);
+  if (glm::length(on_road - ctx.camera_position) > route_snap_m) return straight;
+  // Travel the same distance along the road, keeping the camera's offset from the centre line.
+  const glm::dvec3 tangent = road.tangent(s);
+  const double speed_along = glm::dot(ctx.camera_velocity, tangent);
+  const double s_ahead = s + speed_along * horizon_s;
+  const glm::dvec3 offset = ctx.camera_position - on_road;
+  return road.at(s_ahead) + offset;
+}
+
+Focus make_focus(const FrameContext& ctx, const PredictionSettings& s) {
+  Focus f;
+  f.now = ctx.camera_position;
+  f.ahead = ctx.camera_position;
+  if (!s.enabled || ctx.camera_cut) return f;
+  const double latency = ctx.capture_latency_s();
+  const double horizon = (std::isfinite(latency) ? latency : 0.0) + s.lookahead_s;
+  f.ahead = predict_position(ctx, horizon, s.route, s.route_snap_m);
+  return f;
+}
+
+}  // namespace ambisim

@@ -1,0 +1,108 @@
+#include "policies/registry/registry.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "policies/ambisim/demand_planner.h"
+#include "policies/baselines/constant_ambient.h"
+#include "policies/baselines/nearest_probe.h"
+#include "policies/baselines/oracle.h"
+#include "policies/baselines/per_object.h"
+#include "policies/baselines/scrolling_grid.h"
+#include "policies/thesis/octree.h"
+#include "policies/thesis/shgraph.h"
+#include "policies/thesis/shgraph2d.h"
+#include "sim/base/input_error.h"
+
+namespace ambisim {
+
+const std::vector<PlannerInfo>& planner_catalogue() {
+  // One line per planner (later: octree, shgraph, their +vp variants, shgraph2d, per_object,
+  // grid, ambisim's own). Order = the order `ambisim planners` prints.
+  static const std::vector<PlannerInfo> catalogue = {
+      OraclePlanner::info(),
+      ConstantAmbientPlanner::constant_info(),
+      ConstantAmbientPlanner::hemisphere_info(),
+      NearestProbePlanner::info(),
+      PerObjectPlanner::info(),
+      ScrollingGridPlanner::info(),
+      OctreePlanner::info(),
+      OctreePlanner::vp_info(),
+      ShGraphPlanner::info(),
+      ShGraphPlanner::info_vp(),
+      ShGraphPlanner::info_route(),
+      ShGraph2dPlanner::info(),
+      DemandPlanner::info(),
+  };
+  return catalogue;
+}
+
+const PlannerInfo& find_planner(const std::string& name, const std::string& file,
+                                const std::string& path) {
+  const auto& all = planner_catalogue();
+  for (const auto& info : all) {
+    if (info.name == name) return info;
+  }
+  std::string valid;
+  for (const auto& info : all) valid += (valid.empty() ? "" : ", ") + info.name;
+  throw InputError(file, path, "unknown planner \"" + name + "\"; valid planners: " + valid);
+}
+
+PlannerParams planner_params_from_json(const std::string& name, const nlohmann::json& j,
+                                       const std::string& file, const std::string& pointer) {
+  const PlannerInfo& info = find_planner(name, file, pointer);
+  return PlannerParams::from_json(info.name, info.params, j, file, pointer);
+}
+
+PlannerParams planner_params_from_cli(const std::string& name,
+                                      const std::vector<std::string>& assignments) {
+  const PlannerInfo& info = find_planner(name, "--planner", "");
+  return PlannerParams::from_cli(info.name, info.params, assignments);
+}
+
+std::unique_ptr<Planner> make_planner(const std::string& name, const PlannerParams& params) {
+  const PlannerInfo& info = find_planner(name);
+  return info.make(params.bind(info.name, info.params));
+}
+
+std::string format_catalogue(const std::vector<PlannerInfo>& catalogue) {
+  std::ostringstream os;
+  for (const auto& info : catalogue) {
+    os << info.name << ": " << info.description << "\n";
+    if (info.params.empty()) {
+      os << "    (no parameters)\n";
+      continue;
+    }
+    std::size_t w_name = 0, w_type = 0, w_def = 0, w_allowed = 0;
+    std::vector<std::string> defs;
+    for (const auto& s : info.params) {
+      defs.push_back(s.default_text());
+      w_name = std::max(w_name, s.name.size());
+      w_type = std::max(w_type, to_string(s.type).size());
+      w_def = std::max(w_def, defs.back().size());
+      w_allowed = std::max(w_allowed, s.allowed_text().size());
+    }
+    for (std::size_t i = 0; i < info.params.size(); ++i) {
+      const auto& s = info.params[i];
+      auto pad = [](const std::string& t, std::size_t w) {
+        return t + std::string(w - t.size(), ' ');
+      };
+      os << "    " << pad(s.name, w_name) << "  " << pad(to_string(s.type), w_type) << "  "
+         << pad(defs[i], w_def) << "  " << pad(s.allowed_text(), w_allowed) << "  " << s.description
+         << "\n";
+    }
+  }
+  return os.str();
+}
+
+nlohmann::json catalogue_json(const std::vector<PlannerInfo>& catalogue) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& info : catalogue) {
+    nlohmann::json params = nlohmann::json::array();
+    for (const auto& s : info.params) params.push_back(s.to_json());
+    out.push_back({{"name", info.name}, {"description", info.description}, {"params", params}});
+  }
+  return out;
+}
+
+}  // namespace ambisim

@@ -1,0 +1,158 @@
+#pragma once
+// The SHGraph machinery (thesis 8.4.2, Bilaga B), for a volume (Dim = 3, `shgraph`) or a
+// ground sheet (Dim = 2, `shgraph2d`, thesis 8.5/9.3, D12). One concept: a hierarchy of cells
+// split 3 per axis (27 or 9 children, created and removed together) with a coefficient anchor
+// at each cell centre (the centre child shares its parent's anchor: same integer key, D10),
+// 2 x Dim same-depth neighbour links kept in pairs, a children-with-coefficients mask driving
+// pruning, a root that grows when a capture is needed outside it and shrinks back (D9), a
+// working depth from frame rate, budget and speed (D2), and a lookup of at most 2^Dim sets, one
+// per octant (quadrant), interpolated by distance, going up a level while a level has none.
+//
+// Keys: anchor and node centres are integer triples in units of h = finest cell / 2 from a
+// fixed origin (the first root's min corner). A node at depth d has half-size 3^(Dmax - d) in
+// those units; the centre child has its parent's centre, hence its anchor. Depth may become
+// negative after root growth. Positions are derived from keys, never the reverse.
+#include <array>
+#include <cstdint>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
+
+#include "policies/thesis/coefficient_anchor.h"
+#include "policies/thesis/shgraph_settings.h"
+#include "sim/planner.h"
+
+namespace ambisim {
+
+// The anchor plus where it stands and how many nodes share it (the centre chain).
+struct AnchorEntry {
+  CoefficientAnchor anchor;
+  glm::dvec3 position{0.0};  // nominal: the node centre (on a sheet: at the sheet height)
+  glm::dvec3 capture{0.0};   // where it is captured (lifted out of solids, D14)
+  std::int32_t refs = 0;
+};
+
+template <int Dim>
+class ShGraphCore {
+ public:
+  using Key = std::array<std::int64_t, Dim>;
+  static constexpr int kChildren = Dim == 3 ? 27 : 9;
+  static constexpr int kCentreChild = kChildren / 2;
+  static constexpr int kLinks = 2 * Dim;
+  static constexpr int kMaxLevels = 40;
+
+  struct Node {
+    Key key{};  // centre, in units of h
+    std::int32_t depth = 0;
+    std::int32_t parent = -1;
+    std::int32_t first_child = -1;            // block of kChildren consecutive nodes, -1 = leaf
+    std::array<std::int32_t, kLinks> link{};  // same-depth neighbours: -x,+x,-y,+y(,-z,+z)
+    std::uint32_t children_with_coefficients = 0;  // thesis' set<int>, as a bit mask
+    AnchorEntry* anchor = nullptr;
+  };
+
+  explicit ShGraphCore(const ShGraphSettings& s);
+
+  // The straightforward paths, kept as the reference for tests and bench/: update() visits
+  // every anchor, stats() counts them, lookup() walks to each neighbour separately. Results
+  // are identical either way (tests/policies/thesis/test_shgraph_naive.cpp).
+  void set_naive(bool naive) { naive_ = naive; }
+
+  std::vector<CaptureRequest> plan(const FrameContext& ctx);
+  void started(std::uint64_t tag);
+  void refused(std::uint64_t tag);
+  void deliver(const FinishedProbe& probe);
+  void update(const FrameContext& ctx);
+  LookupResult lookup(const glm::dvec3& p) const;
+  PlannerStats stats() const;
+  void describe_nodes(std::vector<ProbeNodeView>& out) const;
+
+  // Introspection for tests.
+  int max_depth() const { return dmax_; }
+  int working_depth() const { return d_eff_; }
+  bool has_root() const { return !nodes_.empty(); }
+  int root_depth() const { return nodes_.empty() ? 0 : nodes_[0].depth; }
+  double root_size_now() const;       // metres
+  double cell_size(int depth) const;  // metres
+  const std::vector<Node>& nodes() const { return nodes_; }
+  bool node_live(std::int32_t i) const;
+  glm::dvec3 node_centre(std::int32_t i) const;  // metres (z: the anchor's, on a sheet)
+  // The anchor at a node centre (null: no node there at any depth).
+  const CoefficientAnchor* anchor_at(const glm::dvec3& p, int depth) const;
+  std::int64_t anchor_count() const { return static_cast<std::int64_t>(anchors_.size()); }
+
+ private:
+  using Q = std::array<double, Dim>;  // a position in h units from the origin
+
+  Q to_q(const glm::dvec3& p) const;
+  std::int64_t half(int depth) const { return pow3_[dmax_ - depth]; }
+  bool contains(std::int32_t i, const Q& q) const;
+  int child_containing(std::int32_t i, const Q& q) const;
+  glm::dvec3 anchor_position(const Key& key) const;
+  glm::dvec3 capture_position(const glm::dvec3& nominal) const;
+
+  AnchorEntry* acquire(const Key& key);
+  // Drops an anchor from the update lists before its entry is erased.
+  void forget(AnchorEntry* e);
+  void set_coefficients(AnchorEntry* e, const Sh9Rgb& sh, const FinishedProbe& probe,
+                        const Sh9Rgb* fade_from, double fade_from_time);
+  std::int32_t alloc_block();
+  void init_child(std::int32_t parent, int c, std::int32_t slot);
+  void link_children(std::int32_t parent);
+  void expand(std::int32_t i);
+  void collapse(std::int32_t i);
+  void release_node(std::int32_t i);
+  void move_node(std::int32_t from, std::int32_t to);
+  bool grow_towards(const Q& q);
+  void shrink_root(int child);
+  std::int32_t ensure_node(const Q& q, int depth);
+  std::int32_t neighbour(std::int32_t i, const std::array<int, Dim>& offset) const;
+  // The node and its same-depth neighbours, index sum (o[a] + 1) 3^a (-1 where none).
+  using Neighbourhood = std::array<std::int32_t, kChildren>;
+  void neighbourhood(std::int32_t i, Neighbourhood& out) const;
+  void neighbourhood_naive(std::int32_t i, Neighbourhood& out) const;
+  std::int32_t find_deepest(const Q& q, std::array<std::int32_t, kMaxLevels>& path,
+                            int* count) const;
+  std::uint32_t refresh_masks(std::int32_t i, const Focus& focus, bool* in_flight);
+  bool protected_node(std::int32_t i, const Focus& focus) const;
+  void update_working_depth(const FrameContext& ctx);
+  double ground_at(double x, double y) const;
+  // lookup() without its fallback: false when no set serves p (r is then untouched).
+  bool lookup_into(const glm::dvec3& p, LookupResult& r) const;
+
+  ShGraphSettings s_;
+  int dmax_ = 0;
+  double h_ = 1.0;
+  glm::dvec3 origin_{0.0};
+  std::array<std::int64_t, kMaxLevels> pow3_{};
+  std::vector<Node> nodes_;  // [0] = root; then blocks of kChildren
+  std::vector<std::int32_t> free_blocks_;
+  std::map<Key, AnchorEntry> anchors_;
+  // What update() must visit (the rest of the anchors' update() would change nothing): anchors
+  // holding a set, by the creation time of their newest set (only old sets can expire or ask
+  // for renewal), and anchors mid-fade. by_age_ holds exactly the anchors with coefficients.
+  std::set<std::pair<double, AnchorEntry*>> by_age_;
+  std::vector<AnchorEntry*> fading_;
+  double margin_prev_s_ = 0.0;  // the renewal margin of the previous update()
+  bool naive_ = false;
+  struct InFlight {
+    Key key{};
+    double requested_time = 0.0;
+  };
+  std::map<std::uint64_t, InFlight> pending_;    // returned by plan(), not yet started
+  std::map<std::uint64_t, InFlight> in_flight_;  // started, not yet delivered
+  std::uint64_t next_tag_ = 1;
+  const WorldQueries* world_ = nullptr;
+  double now_ = 0.0;
+  int d_eff_ = -1;
+  double shrink_since_ = -1.0;
+};
+
+extern template class ShGraphCore<2>;
+extern template class ShGraphCore<3>;
+
+}  // namespace ambisim

@@ -1,0 +1,115 @@
+#include "policies/thesis/shgraph_settings.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ambisim {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Cells of `size` from `root` down while they stay >= `floor_m` (integer steps, so 243 / 27
+// gives exactly 2 levels without log rounding), at most `limit` levels.
+int levels_down(double root, double floor_m, int limit) {
+  int d = 0;
+  double size = root;
+  while (d < limit && size / 3.0 >= floor_m * (1.0 - 1e-9)) {
+    size /= 3.0;
+    ++d;
+  }
+  return d;
+}
+
+}  // namespace
+
+double min_cell_for_speed(double speed_mps, double fps, double faces_per_frame, double k) {
+  const double rate = fps * faces_per_frame / 6.0;  // sets per second
+  if (rate <= 0.0) return kInf;
+  return k * speed_mps / rate;
+}
+
+int max_depth(double root_size_m, double min_cell_m) {
+  return levels_down(root_size_m, min_cell_m, 20);  // 3^20 still fits the int64 keys (D10)
+}
+
+int depth_for_speed(double speed_mps, double fps, double faces_per_frame,
+                    const ShGraphSettings& s) {
+  const double need =
+      std::max(min_cell_for_speed(speed_mps, fps, faces_per_frame, s.k), s.min_cell_m);
+  if (!std::isfinite(need)) return 0;
+  return levels_down(s.root_size_m, need, max_depth(s.root_size_m, s.min_cell_m));
+}
+
+std::vector<ParamSpec> shgraph_params(int dim, bool predict, bool route) {
+  std::vector<ParamSpec> v = {
+      number_param("lifetime_s", 60.0, Range::positive(),
+                   "a set is valid this long after its capture was requested (D6)"),
+      number_param("fade_s", 1.0, Range::non_negative(),
+                   "new coefficients fade in linearly over this time (D8)"),
+      choice_param("fade_from", "lookup", {"lookup", "none"},
+                   "a fresh anchor fades from what lookups gave there (lookup) or snaps (none)"),
+      number_param("root_size_m", 243.0, Range::positive(),
+                   "normal root cell size; grows 3x to capture outside it, shrinks back (D9)"),
+      number_param("min_cell_m", 3.0, Range::positive(),
+                   "finest cell: max depth = floor(log3(root_size_m / min_cell_m)) (D2)"),
+      number_param("k", dim == 3 ? 9.0 : 3.0, Range::positive(),
+                   "D2: working cell >= k * speed / (fps * faces / 6); cells exposed per cell "
+                   "crossed"),
+      number_param("fps_min", 0.0, Range::non_negative(),
+                   "frame rate for D2 (the minimum expected); 0 = the current frame rate"),
+      choice_param("weights", "inverse", {"inverse", "compact"},
+                   "D4: 1/distance, or max(0, 1 - d / (2 cells)) (pops less when sets enter)"),
+      choice_param("level", "first", {"first", "complete"},
+                   "lookup level: first with any set (L963), or first with every octant filled"),
+      integer_param("widen_cells", 3, Range::closed(1, 5),
+                    "widen the working-depth region up to this radius once 3^dim is complete"),
+      bool_param("predict", predict,
+                 "plan around the predicted camera (+vp: latency + lookahead_s ahead, D15)"),
+      number_param("lookahead_s", 0.5, Range::non_negative(),
+                   "prediction beyond the capture latency (D15)"),
+      bool_param("route", route, "predict along the road spline when on it (thesis 7.5.3)"),
+  };
+  if (dim == 3) {
+    v.push_back(number_param("lift_m", 0.5, Range::non_negative(),
+                             "captures at least this far above the surface (canopy) (D14)"));
+    v.push_back(bool_param("skip_underground", true,
+                           "never capture cells wholly below the terrain (floor, L307)"));
+  } else {
+    v.push_back(number_param("height_m", 2.0, Range::non_negative(),
+                             "sheet height above the ground (D12)"));
+    v.push_back(choice_param("sheet_over", "ground", {"ground", "surface"},
+                             "sheet follows the terrain (under canopy) or the canopy top"));
+  }
+  for (auto& p : coefficient_format_params()) v.push_back(std::move(p));
+  return v;
+}
+
+ShGraphSettings shgraph_settings_from(const PlannerParams& p, int dim) {
+  ShGraphSettings s;
+  s.timing.lifetime_s = p.number("lifetime_s");
+  s.timing.fade_s = p.number("fade_s");
+  s.fade_from_lookup = p.choice("fade_from") == "lookup";
+  s.root_size_m = p.number("root_size_m");
+  s.min_cell_m = std::min(p.number("min_cell_m"), s.root_size_m);
+  s.k = p.number("k");
+  s.fps_min = p.number("fps_min");
+  s.weights = p.choice("weights") == "compact" ? WeightMode::compact : WeightMode::inverse_distance;
+  s.level = p.choice("level") == "complete" ? LevelRule::complete : LevelRule::first;
+  s.widen_cells = static_cast<int>(p.integer("widen_cells"));
+  s.prediction.enabled = p.boolean("predict");
+  s.prediction.lookahead_s = p.number("lookahead_s");
+  s.prediction.route = p.boolean("route");
+  if (dim == 3) {
+    s.lift_m = p.number("lift_m");
+    s.skip_underground = p.boolean("skip_underground");
+  } else {
+    s.sheet_height_m = p.number("height_m");
+    s.sheet_over_surface = p.choice("sheet_over") == "surface";
+    s.skip_underground = false;
+  }
+  s.format = coefficient_format_from(p);
+  return s;
+}
+
+}  // namespace ambisim

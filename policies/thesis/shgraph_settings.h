@@ -1,0 +1,47 @@
+#pragma once
+// SHGraph's settings and the thesis' rule D2 for the working depth (thesis 8.4.2, Bilaga B):
+// the parameters every SHGraph planner shares (per dimension) and what they mean.
+#include <vector>
+
+#include "policies/core/coefficient_format.h"
+#include "policies/core/planner_params.h"
+#include "policies/core/velocity_prediction.h"
+#include "policies/thesis/coefficient_anchor.h"
+
+namespace ambisim {
+
+enum class WeightMode { inverse_distance, compact };
+enum class LevelRule { first, complete };
+
+struct ShGraphSettings {
+  double root_size_m = 243.0;  // the normal root size (D9); cells are root / 3^d
+  double min_cell_m = 3.0;     // finest cell: MaxDepth = floor(log3(root / min_cell)) (D2)
+  double k = 9.0;              // D2: cells exposed per finest cell crossed (9 in 3D, 3 on a sheet)
+  double fps_min = 0.0;        // D2 frame rate; 0 = the current one (1 / dt)
+  AnchorTiming timing;         // lifetime, fade; margin is derived per frame (D7)
+  bool fade_from_lookup = true;  // D8: a fresh anchor fades from the lookup value (else snaps)
+  WeightMode weights = WeightMode::inverse_distance;  // D4
+  LevelRule level = LevelRule::first;                 // D5 / L963
+  int widen_cells = 3;              // widening radius at the working depth once 3^Dim is complete
+  double lift_m = 0.5;              // D14: captures at least this far above the surface
+  bool skip_underground = true;     // L307: cells wholly below the terrain are never captured
+  double sheet_height_m = 2.0;      // Dim = 2: sheet height above the ground (D12)
+  bool sheet_over_surface = false;  // Dim = 2: above surface_height instead of ground_height
+  double shrink_hold_s = 5.0;       // D9 hysteresis before a grown root shrinks back
+  PredictionSettings prediction;    // +vp (D15)
+  CoefficientFormat format;
+};
+
+// D2. Capture rate R = fps * faces / 6 sets/s; a camera crossing a finest cell of size s at
+// speed v exposes k new cells to capture within s / v, so s >= k v / R.
+double min_cell_for_speed(double speed_mps, double fps, double faces_per_frame, double k);
+// floor(log3(root / max(s, min_cell))), clamped to [0, max_depth(root, min_cell)].
+int max_depth(double root_size_m, double min_cell_m);
+int depth_for_speed(double speed_mps, double fps, double faces_per_frame, const ShGraphSettings& s);
+
+// The parameters shared by all SHGraph planners (defaults per dimension), and the settings
+// they describe.
+std::vector<ParamSpec> shgraph_params(int dim, bool predict, bool route);
+ShGraphSettings shgraph_settings_from(const PlannerParams& p, int dim);
+
+}  // namespace ambisim

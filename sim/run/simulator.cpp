@@ -1,0 +1,296 @@
+#include "sim/run/simulator.h"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+#include "sim/metrics/coverage.h"
+#include "sim/render/capture.h"
+#include "sim/scenario/capture_budget.h"
+#include "sim/scenario/scenario_motion.h"
+#include "sim/sh/sh_projection.h"
+#include "sim/world/world.h"
+#include "sim/world/world_queries.h"
+
+namespace ambisim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+struct InFlight {
+  CaptureRequest request;
+  double requested_time = 0.0;
+  int faces_done = 0;
+  CubeMap cube;
+  const Sh9Rgb* memo = nullptr;  // a memoised reference capture (oracle only)
+};
+
+}  // namespace
+
+nlohmann::ordered_json RunTiming::to_json() const {
+  nlohmann::ordered_json j;
+  j["note"] = "measured wall-clock time; not deterministic, not part of the results";
+  j["total_s"] = total_s;
+  j["planner_us_per_frame"] = frames > 0 ? 1e6 * planner_s / static_cast<double>(frames) : 0.0;
+  j["lookup_ns"] = lookups > 0 ? 1e9 * lookup_s / static_cast<double>(lookups) : 0.0;
+  j["capture_s"] = capture_s;
+  j["frames"] = frames;
+  j["lookups"] = lookups;
+  return j;
+}
+
+double FrameContext::capture_latency_s() const {
+  if (faces_per_frame <= 0.0) return INFINITY;
+  return std::ceil(6.0 / faces_per_frame) * dt;
+}
+
+namespace {
+
+// One run; `reference` may be null (simulate_without_reference): then nothing is scored against
+// truth, and everything the planner sees is unchanged.
+RunResult run_simulation(const Scenario& scenario, const World& world,
+                         const ReferenceTrack* reference, Planner& planner,
+                         const SimulationOptions& options) {
+  const auto t_start = Clock::now();
+  RunResult result;
+  MetricSettings settings = scenario.metrics;
+  // Without a reference the exposure is unknown; 1 only satisfies RunMetrics, which then never
+  // sees a receiver's irradiance (the exposure only scales those).
+  settings.exposure = reference != nullptr ? reference->exposure : 1.0;
+  result.exposure = reference != nullptr ? reference->exposure : 0.0;
+  if (reference != nullptr) {
+    result.reference_captures = reference->captures;
+    result.reference_slots = static_cast<std::int64_t>(reference->ids.size());
+    result.reference_interpolated = reference->slots_interpolated;
+  }
+  RunMetrics metrics(settings);
+  const std::size_t nn = settings.normals.size();
+
+  ScenarioMotion motion(scenario, world);
+  CaptureBudget budget(scenario.budget);
+  const int face_size = scenario.budget.face_size;
+  const WorldQueries world_queries = planner_world_queries(world);
+  const auto ground = [&world](double x, double y) { return world.ground_height(x, y); };
+
+  std::vector<InFlight> in_flight;
+  std::vector<FinishedProbe> finished;
+  std::vector<Planner::ReceiverView> views;
+  std::vector<Rgb> planner_e(nn);
+  std::vector<LookupResult> receiver_lookups, demand_lookups;
+  std::size_t frame_index = 0;
+  // Snapshots feed the views; a 30-minute run would otherwise write gigabytes of them.
+  const double snapshot_every =
+      options.snapshot_every_s > 0.0
+          ? std::max(options.snapshot_every_s, motion.schedule().duration() / kMaxSnapshots)
+          : 0.0;
+
+  // The oracle (a planner that ignores the budget) is served the reference's own SH9 at a
+  // receiver: the representation's ceiling against exactly this reference. A request that is
+  // not at a receiver is rendered at the reference's resolution.
+  if (reference == nullptr && planner.ignores_budget()) {
+    throw std::invalid_argument("the oracle (" + planner.name() +
+                                ") is served from the reference track: it cannot run without one");
+  }
+  const int oracle_face_size =
+      reference != nullptr && reference->face_size > 0 ? reference->face_size : face_size;
+  auto render_all_faces = [&](InFlight& c, std::size_t frame) {
+    const auto t0 = Clock::now();
+    const std::ptrdiff_t slot = reference->find_slot(frame, c.request.position);
+    c.memo = slot >= 0 ? &reference->sh[static_cast<std::size_t>(slot)] : nullptr;
+    if (c.memo == nullptr) {
+      if (c.cube.size != oracle_face_size) c.cube = CubeMap(oracle_face_size);
+      for (int f = 0; f < kCubeFaces; ++f) {
+        capture_face(world, c.request.position, static_cast<CubeFace>(f), c.cube);
+      }
+    }
+    c.faces_done = kCubeFaces;
+    result.timing.capture_s += seconds_since(t0);
+  };
+  auto finish = [&](const InFlight& c, double time) {
+    const auto t0 = Clock::now();
+    FinishedProbe p;
+    p.tag = c.request.tag;
+    p.position = c.request.position;
+    p.sh = c.memo != nullptr ? *c.memo : projector_for(c.cube.size).project(c.cube);
+    p.requested_time = c.requested_time;
+    p.finished_time = time;
+    result.timing.capture_s += seconds_since(t0);
+    ++result.captures_delivered;
+    return p;
+  };
+
+  while (motion.next()) {
+    const MotionFrame& mf = motion.current();
+    const std::size_t receiver_count = motion.receivers().size();
+    ReferenceTrack::FrameSpan span{0, receiver_count};
+    if (reference != nullptr) {
+      if (frame_index >= reference->frames.size()) {
+        throw std::logic_error("reference track is shorter than the run");
+      }
+      span = reference->frames[frame_index];
+      if (span.count != receiver_count) {
+        throw std::logic_error("reference track does not match the scenario's receivers");
+      }
+    }
+    metrics.begin_frame(mf.frame.index, mf.frame.time, mf.frame.dt);
+    budget.begin_frame(mf.frame.time);
+
+    FrameCosts costs;
+    std::int64_t owed = 0;
+    for (const auto& c : in_flight) owed += kCubeFaces - c.faces_done;
+
+    FrameContext ctx;
+    ctx.frame = mf.frame.index;
+    ctx.time = mf.frame.time;
+    ctx.dt = mf.frame.dt;
+    ctx.camera_position = mf.camera.position;
+    ctx.camera_velocity = mf.camera.velocity;
+    ctx.camera_cut = mf.camera.cut;
+    ctx.faces_per_frame = budget.faces_per_frame(mf.frame.time);
+    ctx.face_size = face_size;
+    ctx.world = &world_queries;
+    const bool unlimited = planner.ignores_budget();
+    ctx.startable_captures =
+        unlimited ? 1 << 20
+                  : static_cast<int>(std::max<std::int64_t>(0, budget.available() - owed));
+
+    // 2. plan and start captures.
+    auto t0 = Clock::now();
+    views.clear();
+    for (const auto& r : motion.receivers()) views.push_back({r.id, r.position, r.velocity});
+    planner.set_receivers(views);
+    std::vector<CaptureRequest> requests = planner.plan(ctx);
+    int started = 0;
+    for (const auto& req : requests) {
+      if (started < ctx.startable_captures) {
+        planner.started(req.tag);
+        in_flight.push_back(
+            {req, mf.frame.time, 0, unlimited ? CubeMap() : CubeMap(face_size), nullptr});
+        ++started;
+        ++result.captures_started;
+      } else {
+        planner.refused(req.tag);
+        ++costs.captures_refused;
+      }
+    }
+    result.timing.planner_s += seconds_since(t0);
+
+    // 3. render faces within the budget, oldest capture first.
+    finished.clear();
+    std::int64_t needed = 0;
+    for (const auto& c : in_flight) needed += kCubeFaces - c.faces_done;
+    costs.faces_requested = needed;
+    if (unlimited) {
+      for (auto& c : in_flight) render_all_faces(c, frame_index);
+      costs.faces_granted = needed;
+    } else {
+      int grant = budget.grant(static_cast<int>(std::min<std::int64_t>(needed, 1 << 30)));
+      costs.faces_granted = grant;
+      const auto tc = Clock::now();
+      for (auto& c : in_flight) {
+        while (grant > 0 && c.faces_done < kCubeFaces) {
+          capture_face(world, c.request.position, static_cast<CubeFace>(c.faces_done), c.cube);
+          ++c.faces_done;
+          --grant;
+        }
+      }
+      result.timing.capture_s += seconds_since(tc);
+    }
+    costs.faces_refused = costs.faces_requested - costs.faces_granted;
+    for (auto it = in_flight.begin(); it != in_flight.end();) {
+      if (it->faces_done == kCubeFaces) {
+        finished.push_back(finish(*it, mf.frame.time));
+        costs.faces_used += kCubeFaces;
+        it = in_flight.erase(it);
+      } else {
+        ++it;
+      }
+    }
+    // The oracle's captures are usable at once; everyone else's from the next frame.
+    t0 = Clock::now();
+    if (unlimited) {
+      for (const auto& p : finished) planner.deliver(p);
+      finished.clear();
+    }
+    // 4. update.
+    planner.update(ctx);
+    result.timing.planner_s += seconds_since(t0);
+
+    // 5. look up every receiver and demand point (only the lookups are timed), then score.
+    const std::vector<DemandPoint> demand =
+        demand_points(mf.camera.position, mf.camera.velocity, ground, settings.demand);
+    receiver_lookups.clear();
+    demand_lookups.clear();
+    const auto tl = Clock::now();
+    for (std::size_t k = 0; k < receiver_count; ++k) {
+      receiver_lookups.push_back(planner.lookup(motion.receivers()[k].position));
+    }
+    for (const auto& d : demand) demand_lookups.push_back(planner.lookup(d.position));
+    result.timing.lookup_s += seconds_since(tl);
+    result.timing.lookups += static_cast<std::int64_t>(receiver_count + demand.size());
+    for (std::size_t k = 0; k < receiver_count; ++k) {
+      const Receiver& r = motion.receivers()[k];
+      const LookupResult& lr = receiver_lookups[k];
+      if (reference != nullptr) {
+        for (std::size_t m = 0; m < nn; ++m) {
+          planner_e[m] = sh_irradiance(lr.sh, settings.normals[m]);
+        }
+        metrics.receiver(r.id, planner_e,
+                         std::span<const Rgb>(reference->values(span.begin + k), nn), lr);
+      }
+      metrics.demand_point(lr, glm::length(r.position - mf.camera.position), DemandKind::receiver);
+    }
+    for (std::size_t k = 0; k < demand.size(); ++k) {
+      metrics.demand_point(demand_lookups[k], demand[k].distance_m, demand[k].kind);
+    }
+
+    const PlannerStats stats = planner.stats();
+    costs.live_probes = stats.live_probes;
+    costs.bytes = stats.bytes;
+    metrics.costs(costs);
+
+    // 6. deliver what finished this frame.
+    t0 = Clock::now();
+    for (const auto& p : finished) planner.deliver(p);
+    result.timing.planner_s += seconds_since(t0);
+
+    if (options.keep_frames) result.camera_path.push_back(mf.camera.position);
+    if (snapshot_every > 0.0 &&
+        (result.snapshots.empty() ||
+         mf.frame.time >= result.snapshots.back().time + snapshot_every - 1e-9)) {
+      Snapshot snap;
+      snap.frame = mf.frame.index;
+      snap.time = mf.frame.time;
+      snap.camera = mf.camera.position;
+      planner.describe_nodes(snap.nodes);
+      for (const auto& r : motion.receivers()) snap.receivers.push_back(r.position);
+      result.snapshots.push_back(std::move(snap));
+    }
+    FrameRow row = metrics.end_frame();
+    if (options.keep_frames) result.frames.push_back(row);
+    ++frame_index;
+  }
+  result.summary = metrics.summary();
+  result.timing.frames = static_cast<std::int64_t>(frame_index);
+  result.timing.total_s = seconds_since(t_start);
+  return result;
+}
+
+}  // namespace
+
+RunResult simulate(const Scenario& scenario, const World& world, const ReferenceTrack& reference,
+                   Planner& planner, const SimulationOptions& options) {
+  return run_simulation(scenario, world, &reference, planner, options);
+}
+
+RunResult simulate_without_reference(const Scenario& scenario, const World& world, Planner& planner,
+                                     const SimulationOptions& options) {
+  return run_simulation(scenario, world, nullptr, planner, options);
+}
+
+}  // namespace ambisim

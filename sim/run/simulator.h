@@ -1,0 +1,92 @@
+#pragma once
+// The referee: flies the scenario's camera, grants captures within the budget, lights the
+// receivers through a planner and scores the result (SPEC section 3).
+//
+// Per frame, in this order:
+//   1. the motion advances (camera, receivers);
+//   2. the planner sees the receivers and plans; the simulator starts at most
+//      `startable_captures` requests (the budget's free faces after those owed to captures in
+//      flight) and refuses the rest;
+//   3. granted faces are rendered, oldest capture first (a probe takes 6 faces: at the default
+//      1 face per frame, 6 frames, while the camera keeps moving);
+//   4. the planner updates (lifetimes, fades);
+//   5. every live receiver and every coverage demand point is looked up and scored;
+//   6. probes whose sixth face was rendered this frame are projected and delivered: usable from
+//      the next frame.
+// A planner that ignores the budget (the oracle) gets every request rendered and delivered at
+// once, before its lookups.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "sim/metrics/metrics.h"
+#include "sim/planner.h"
+#include "sim/run/reference_track.h"
+#include "sim/scenario/scenario.h"
+
+namespace ambisim {
+
+class World;
+
+// Measured, not simulated: wall-clock costs, reported apart from the deterministic results.
+struct RunTiming {
+  double total_s = 0.0;
+  double planner_s = 0.0;  // plan + update + deliver
+  double lookup_s = 0.0;
+  std::int64_t lookups = 0;
+  double capture_s = 0.0;  // face rendering and projection
+  std::int64_t frames = 0;
+  nlohmann::ordered_json to_json() const;
+};
+
+// The state of a run at one moment, for the VTK views: the planner's nodes, the camera and the
+// receivers (with the planner's and the reference's irradiance straight up, for colouring).
+struct Snapshot {
+  std::int64_t frame = 0;
+  double time = 0.0;
+  glm::dvec3 camera{0.0};
+  std::vector<ProbeNodeView> nodes;
+  std::vector<glm::dvec3> receivers;
+};
+
+struct RunResult {
+  Summary summary;
+  std::vector<FrameRow> frames;
+  RunTiming timing;
+  std::int64_t captures_started = 0;
+  std::int64_t captures_delivered = 0;
+  double exposure = 0.0;
+  // What the reference cost (0 without one): captures rendered, receiver-frames it serves,
+  // and how many of those were interpolated in time rather than captured.
+  std::int64_t reference_captures = 0;
+  std::int64_t reference_slots = 0;
+  std::int64_t reference_interpolated = 0;
+  std::vector<glm::dvec3> camera_path;  // camera position per frame
+  std::vector<Snapshot> snapshots;
+};
+
+// At most this many snapshots per run: longer runs space them out.
+inline constexpr double kMaxSnapshots = 120.0;
+
+struct SimulationOptions {
+  bool keep_frames = true;        // keep the per-frame series
+  double snapshot_every_s = 1.0;  // record a Snapshot this often (0: never)
+};
+
+RunResult simulate(const Scenario& scenario, const World& world, const ReferenceTrack& reference,
+                   Planner& planner, const SimulationOptions& options = {});
+
+// The same run without a reference track ("reference off"), for throughput measurements and
+// for tools that only need what the planner did. Everything the planner sees and does is
+// identical to simulate(): the frames, the budget, plan/started/refused/update/deliver, every
+// receiver and demand-point lookup, the rendered captures. What needs the reference is left
+// out: no irradiance is evaluated at the metric normals and nothing is scored against truth, so
+// the summary's accuracy, pops, staleness and receiver counts stay empty (0 or NaN) and
+// `exposure` is 0; faces, captures, probes, memory and coverage are the same as with it.
+// The oracle is served from the reference, so it throws std::invalid_argument here.
+RunResult simulate_without_reference(const Scenario& scenario, const World& world, Planner& planner,
+                                     const SimulationOptions& options = {});
+
+}  // namespace ambisim

@@ -1,0 +1,106 @@
+#pragma once
+// Where the camera is at each moment: a keyframed spline or a lane of the world road, moved
+// along by a speed profile, with optional cuts (teleports). Evaluation is a pure function of
+// time (plus a cache of cut anchors), so frame rate never changes where the camera is.
+#include <optional>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "sim/base/json_reader.h"
+#include "sim/scenario/speed_profile.h"
+#include "sim/world/spline.h"
+#include "sim/world/terrain_queries.h"
+
+namespace ambisim {
+
+struct CameraState {
+  double time = 0.0;
+  glm::dvec3 position{0.0};
+  glm::dvec3 velocity{0.0};  // m/s; on a cut frame, the velocity of the new motion
+  bool cut = false;          // true on the first frame after a teleport
+};
+
+struct CutRecord {
+  enum class Kind { to_arc_length, to_position, jump_ahead };
+  double time_s = 0.0;  // > 0
+  Kind kind = Kind::to_arc_length;
+  double metres = 0.0;       // to_arc_length: course coordinate; jump_ahead: distance
+  glm::dvec3 position{0.0};  // to_position: jumps to the course point nearest this
+};
+
+struct PeriodicCutRecord {
+  double every_s = 0.0;           // 0 = none
+  double first_s = 0.0;           // time of the first cut
+  double jump_ahead_m = 0.0;      // used when targets_m is empty
+  std::vector<double> targets_m;  // course coordinates, cycled
+};
+
+struct CameraPathRecord {
+  enum class Type { keyframes, road };
+  enum class AtEnd { hold, loop };
+  Type type = Type::keyframes;
+  // keyframes
+  std::vector<glm::dvec3> points;
+  bool z_above_ground = false;
+  // road
+  std::optional<double> lane_offset_m;  // default road_width / 4 (middle of the right lane)
+  double height_m = 1.5;
+  double start_arc_length_m = 0.0;
+  int direction = 1;
+  // both
+  SpeedProfileRecord speed;
+  AtEnd at_end = AtEnd::hold;
+  std::vector<CutRecord> cuts;  // sorted by time, strictly increasing
+  PeriodicCutRecord periodic;
+};
+
+// Reads a "camera" object (schema in the file comment of camera_path.cpp); calls finish().
+CameraPathRecord parse_camera_path(ObjectReader& r);
+
+class CameraPath {
+ public:
+  // Throws std::invalid_argument if the record needs a road or ground height that `terrain`
+  // lacks, or the road start lies off the road.
+  CameraPath(const CameraPathRecord& record, const TerrainQueries& terrain);
+
+  // State at `time` >= 0. `cut` is set if a teleport happened in (previous_time, time]; pass
+  // previous_time == time on the first frame. Not thread-safe (periodic cuts fill a cache).
+  CameraState state(double time, double previous_time) const;
+
+  // The course: the distance coordinate u in [0, course_length()] from where the path starts,
+  // in its direction of travel (keyframes: spline arc length; road: metres from the start).
+  double course_length() const { return course_length_; }
+  glm::dvec3 course_point(double u) const;
+  // d(course_point)/du: the unit tangent for keyframes; for an offset lane, slightly off unit.
+  glm::dvec3 course_derivative(double u) const;
+
+ private:
+  struct Anchor {
+    double time;
+    double u;  // course coordinate right after the cut
+  };
+  std::size_t anchor_index(double time) const;  // last anchor with anchor.time <= time
+  double settle(double u) const;                // wrap (loop) or clamp (hold) into the course
+  double nearest_u(const glm::dvec3& p) const;
+  // Unwrapped course coordinate at `time` under anchor k.
+  double travelled(std::size_t k, double time) const;
+
+  CameraPathRecord::Type type_;
+  CameraPathRecord::AtEnd at_end_;
+  Spline3 spline_;
+  const Spline3* road_ = nullptr;
+  double lane_offset_ = 0.0;
+  double height_ = 0.0;
+  double start_s_ = 0.0;
+  int direction_ = 1;
+  double course_length_ = 0.0;
+  bool closed_ = false;  // a looping course whose end meets its start: wraps are not cuts
+  SpeedProfile speed_;
+  std::vector<CutRecord> cuts_;
+  PeriodicCutRecord periodic_;
+  mutable std::vector<Anchor> anchors_;
+  mutable bool anchors_complete_ = false;
+};
+
+}  // namespace ambisim

@@ -1,0 +1,124 @@
+#include "sim/world/spline.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+namespace ambisim {
+namespace {
+
+// Centripetal knot spacing: |p1 - p0|^0.5.
+double knot_step(const glm::dvec3& a, const glm::dvec3& b) {
+  return std::max(std::sqrt(glm::length(b - a)), 1e-9);
+}
+
+}  // namespace
+
+Spline3::Spline3(std::vector<glm::dvec3> points, int samples_per_segment) {
+  for (const auto& p : points) {
+    if (points_.empty() || glm::length(p - points_.back()) > 1e-9) points_.push_back(p);
+  }
+  if (points_.size() < 2) throw std::invalid_argument("Spline3 needs at least 2 distinct points");
+  const int segments = static_cast<int>(points_.size()) - 1;
+  const int n = segments * std::max(samples_per_segment, 1);
+  table_t_.resize(static_cast<std::size_t>(n) + 1);
+  table_s_.resize(static_cast<std::size_t>(n) + 1);
+  glm::dvec3 prev = eval(0.0);
+  table_t_[0] = 0.0;
+  table_s_[0] = 0.0;
+  for (int k = 1; k <= n; ++k) {
+    const double t = static_cast<double>(k) * segments / n;
+    const glm::dvec3 p = eval(t);
+    table_t_[k] = t;
+    table_s_[k] = table_s_[k - 1] + glm::length(p - prev);
+    prev = p;
+  }
+}
+
+glm::dvec3 Spline3::eval(double t) const {
+  const int segments = static_cast<int>(points_.size()) - 1;
+  const int i = std::clamp(static_cast<int>(std::floor(t)), 0, segments - 1);
+  const double u = t - i;
+  const glm::dvec3 p1 = points_[i];
+  const glm::dvec3 p2 = points_[i + 1];
+  // Mirror the end points so the curve passes through the first and last control points.
+  const glm::dvec3 p0 = i > 0 ? points_[i - 1] : 2.0 * p1 - p2;
+  const glm::dvec3 p3 = i + 2 <= segments ? points_[i + 2] : 2.0 * p2 - p1;
+  // Barry-Goldman pyramid for the non-uniform (centripetal) Catmull-Rom.
+  const double t0 = 0.0;
+  const double t1 = t0 + knot_step(p0, p1);
+  const double t2 = t1 + knot_step(p1, p2);
+  const double t3 = t2 + knot_step(p2, p3);
+  const double tt = t1 + u * (t2 - t1);
+  const glm::dvec3 a1 = ((t1 - tt) * p0 + (tt - t0) * p1) / (t1 - t0);
+  const glm::dvec3 a2 = ((t2 - tt) * p1 + (tt - t1) * p2) / (t2 - t1);
+  const glm::dvec3 a3 = ((t3 - tt) * p2 + (tt - t2) * p3) / (t3 - t2);
+  const glm::dvec3 b1 = ((t2 - tt) * a1 + (tt - t0) * a2) / (t2 - t0);
+  const glm::dvec3 b2 = ((t3 - tt) * a2 + (tt - t1) * a3) / (t3 - t1);
+  return ((t2 - tt) * b1 + (tt - t1) * b2) / (t2 - t1);
+}
+
+double Spline3::param_at(double s) const {
+  s = std::clamp(s, 0.0, length());
+  auto it = std::upper_bound(table_s_.begin(), table_s_.end(), s);
+  if (it == table_s_.end()) return table_t_.back();
+  const std::size_t k = static_cast<std::size_t>(it - table_s_.begin());
+  if (k == 0) return table_t_.front();
+  const double ds = table_s_[k] - table_s_[k - 1];
+  const double f = ds > 0.0 ? (s - table_s_[k - 1]) / ds : 0.0;
+  return table_t_[k - 1] + f * (table_t_[k] - table_t_[k - 1]);
+}
+
+glm::dvec3 Spline3::at(double s) const { return eval(param_at(s)); }
+
+glm::dvec3 Spline3::tangent(double s) const {
+  // Central difference over a short arc; one-sided at the ends.
+  const double h = std::min(0.25, 0.5 * length());
+  const double a = std::clamp(s - h, 0.0, length());
+  const double b = std::clamp(s + h, 0.0, length());
+  const glm::dvec3 d = at(b) - at(a);
+  const double len = glm::length(d);
+  return len > 0.0 ? d / len : glm::dvec3(1.0, 0.0, 0.0);
+}
+
+double Spline3::closest_s(const glm::dvec3& p) const {
+  // Coarse pass over every kStride-th table sample, then an exact pass over the polyline
+  // segments around the best coarse sample: O(n / kStride) instead of O(n). Exact for curves
+  // whose bends are gentle at the table's scale (roads, camera paths); a hairpin tighter
+  // than kStride samples could return a local minimum.
+  constexpr std::size_t kStride = 16;
+  const std::size_t n = table_s_.size();
+  std::size_t best_k = 0;
+  double best_c = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < n; k += kStride) {
+    const glm::dvec3 q = eval(table_t_[k]);
+    const double d2 = glm::dot(p - q, p - q);
+    if (d2 < best_c) {
+      best_c = d2;
+      best_k = k;
+    }
+  }
+  const std::size_t lo = best_k > kStride ? best_k - kStride : 0;
+  const std::size_t hi = std::min(n - 1, best_k + kStride);
+  double best_s = 0.0;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  for (std::size_t k = lo; k < hi; ++k) {
+    const glm::dvec3 a = eval(table_t_[k]);
+    const glm::dvec3 b = eval(table_t_[k + 1]);
+    const glm::dvec3 ab = b - a;
+    const double len2 = glm::dot(ab, ab);
+    const double f = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+    const glm::dvec3 q = a + f * ab;
+    const double d2 = glm::dot(p - q, p - q);
+    if (d2 < best_d2) {
+      best_d2 = d2;
+      best_s = table_s_[k] + f * (table_s_[k + 1] - table_s_[k]);
+    }
+  }
+  return best_s;
+}
+
+}  // namespace ambisim

@@ -1,0 +1,111 @@
+#include "sim/world/world_params.h"
+
+#include <cmath>
+
+#include "sim/base/json_reader.h"
+
+namespace ambisim {
+namespace {
+
+constexpr double kMaxCells = 67108864.0;  // 2^26
+
+Rgb read_rgb(ObjectReader& r, const char* key, const Rgb& fallback) {
+  // Stored as float: bounded far below FLT_MAX so that radiance stays finite.
+  const glm::dvec3 v = r.vec3(key, glm::dvec3(fallback), Range::closed(0.0, 1e6));
+  return Rgb(v);
+}
+
+TerrainParams parse_terrain(ObjectReader& r) {
+  TerrainParams t;
+  t.amplitude_m = r.number("amplitude_m", t.amplitude_m, Range::closed(0.0, 5000.0));
+  t.wavelength_m = r.number("wavelength_m", t.wavelength_m, Range::closed(10.0, 1e6));
+  t.roughness = r.number("roughness", t.roughness, Range::closed(0.0, 0.9));
+  t.ridge_weight = r.number("ridge_weight", t.ridge_weight, Range::unit());
+  t.cliff_height_m = r.number("cliff_height_m", t.cliff_height_m, Range::closed(0.0, 1000.0));
+  t.water_level_m = r.number("water_level_m", t.water_level_m);
+  t.snow_line_m = r.number("snow_line_m", t.snow_line_m);
+  t.forest_fraction = r.number("forest_fraction", t.forest_fraction, Range::unit());
+  t.field_fraction = r.number("field_fraction", t.field_fraction, Range::unit());
+  t.canopy_min_m = r.number("canopy_min_m", t.canopy_min_m, Range::closed(0.0, 100.0));
+  t.canopy_max_m = r.number("canopy_max_m", t.canopy_max_m, Range::closed(0.0, 100.0));
+  if (t.canopy_max_m < t.canopy_min_m) r.fail("canopy_max_m", "must be >= canopy_min_m");
+  r.finish();
+  return t;
+}
+
+RoadParams parse_road(ObjectReader& r) {
+  RoadParams p;
+  p.enabled = r.boolean("enabled", p.enabled);
+  p.width_m = r.number("width_m", p.width_m, Range::closed(2.0, 200.0));
+  p.shoulder_m = r.number("shoulder_m", p.shoulder_m, Range::closed(0.0, 100.0));
+  p.clearance_m = r.number("clearance_m", p.clearance_m, Range::closed(0.0, 500.0));
+  p.smoothing_m = r.number("smoothing_m", p.smoothing_m, Range::closed(0.0, 5000.0));
+  p.meander_m = r.number("meander_m", p.meander_m, Range::closed(0.0, 1e5));
+  p.cutting_slope_deg = r.number("cutting_slope_deg", p.cutting_slope_deg, {1.0, 89.0});
+  p.embankment_slope_deg = r.number("embankment_slope_deg", p.embankment_slope_deg, {1.0, 89.0});
+  r.finish();
+  return p;
+}
+
+SunParams parse_sun(ObjectReader& r) {
+  SunParams s;
+  s.enabled = r.boolean("enabled", s.enabled);
+  s.elevation_deg = r.number("elevation_deg", s.elevation_deg, Range::closed(-90.0, 90.0));
+  s.azimuth_deg = r.number("azimuth_deg", s.azimuth_deg, Range::closed(-360.0, 360.0));
+  s.colour = read_rgb(r, "colour", s.colour);
+  s.radiance_ratio = r.number("radiance_ratio", s.radiance_ratio, Range::closed(0.0, 1e9));
+  s.disc_solid_angle_sr =
+      r.number("disc_solid_angle_sr", s.disc_solid_angle_sr, {0.0, 0.1, true, false});
+  r.finish();
+  return s;
+}
+
+SkyParams parse_sky(ObjectReader& r) {
+  SkyParams s;
+  s.uniform = r.boolean("uniform", s.uniform);
+  s.zenith = read_rgb(r, "zenith", s.zenith);
+  s.horizon = read_rgb(r, "horizon", s.horizon);
+  s.uniform_radiance = read_rgb(r, "uniform_radiance", s.uniform_radiance);
+  r.finish();
+  return s;
+}
+
+FogParams parse_fog(ObjectReader& r) {
+  FogParams f;
+  f.extinction_per_m = r.number("extinction_per_m", f.extinction_per_m, Range::closed(0.0, 1.0));
+  f.colour = read_rgb(r, "colour", f.colour);
+  f.sky_distance_m = r.number("sky_distance_m", f.sky_distance_m, Range::non_negative());
+  r.finish();
+  return f;
+}
+
+}  // namespace
+
+WorldParams parse_world_params(ObjectReader& r) {
+  WorldParams w;
+  w.seed = r.seed("seed", w.seed);
+  w.size_m = r.vec2("size_m", w.size_m, Range::closed(16.0, 65536.0));
+  w.cell_m = r.number("cell_m", w.cell_m, Range::closed(0.05, 64.0));
+  w.origin = r.vec2("origin", w.origin, Range::closed(-1e9, 1e9));
+  for (int k = 0; k < 2; ++k) {
+    const double n = w.size_m[k] / w.cell_m;
+    if (std::abs(n - std::round(n)) > 1e-9 * n) r.fail("size_m", "must be a multiple of cell_m");
+  }
+  if (w.size_m.x / w.cell_m > 16384 || w.size_m.y / w.cell_m > 16384) {
+    r.fail("cell_m", "too small for size_m: at most 16384 cells per side");
+  }
+  // About 40 bytes per cell (heights, shadow map, biome, albedo, radiance, pyramid): 2^26
+  // cells (8192 x 8192) is some 3 GB.
+  if (w.size_m.x / w.cell_m * (w.size_m.y / w.cell_m) > kMaxCells) {
+    r.fail("cell_m", "too small for size_m: at most 67108864 (8192 x 8192) cells in all");
+  }
+  if (auto o = r.optional_object("terrain")) w.terrain = parse_terrain(*o);
+  if (auto o = r.optional_object("road")) w.road = parse_road(*o);
+  if (auto o = r.optional_object("sun")) w.sun = parse_sun(*o);
+  if (auto o = r.optional_object("sky")) w.sky = parse_sky(*o);
+  if (auto o = r.optional_object("fog")) w.fog = parse_fog(*o);
+  r.finish();
+  return w;
+}
+
+}  // namespace ambisim

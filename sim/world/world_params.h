@@ -1,0 +1,78 @@
+#pragma once
+// The validated description of a procedural world: everything World needs to regenerate it
+// bit-identically. Defaults give the standard 4 km hilly world with a motorway.
+#include <cstdint>
+
+#include <glm/vec2.hpp>
+
+#include "sim/colour/rgb.h"
+
+namespace ambisim {
+
+class ObjectReader;
+
+struct TerrainParams {
+  double amplitude_m = 220.0;     // height range of the hills (m), >= 0
+  double wavelength_m = 1400.0;   // largest feature size (m), > 0
+  double roughness = 0.5;         // fBm persistence, 0..0.9
+  double ridge_weight = 0.45;     // share of ridged noise (steep crests), 0..1
+  double cliff_height_m = 35.0;   // height of escarpments (cliff bands), >= 0
+  double water_level_m = 30.0;    // lakes fill terrain below this height
+  double snow_line_m = 205.0;     // snow above this height
+  double forest_fraction = 0.35;  // target share of forest on suitable ground, 0..1
+  double field_fraction = 0.35;   // share of flat lowland parcels that are fields, 0..1
+  double canopy_min_m = 15.0;     // canopy height above ground, range [min, max]
+  double canopy_max_m = 25.0;
+};
+
+struct RoadParams {
+  bool enabled = true;
+  double width_m = 24.0;          // asphalt width (both carriageways)
+  double shoulder_m = 6.0;        // graded flat verge on each side
+  double clearance_m = 25.0;      // no canopy closer than this to the asphalt edge
+  double smoothing_m = 400.0;     // window of the road-profile smoothing (grading)
+  double meander_m = 600.0;       // lateral amplitude of the winding centre line
+  double cutting_slope_deg = 72;  // rock walls of cuttings
+  double embankment_slope_deg = 33;
+};
+
+struct SunParams {
+  bool enabled = true;
+  double elevation_deg = 40.0;  // above the horizon, -90..90 (<= 0: no direct light)
+  double azimuth_deg = 200.0;   // compass: 0 = north (+y), 90 = east (+x)
+  Rgb colour{1.0f, 0.95f, 0.85f};
+  // Sun radiance / sky zenith radiance (luminance-weighted); thesis 10.2.3: about 1e5 at noon.
+  double radiance_ratio = 1.0e5;
+  double disc_solid_angle_sr = 6.8e-5;
+};
+
+struct SkyParams {
+  bool uniform = false;             // true: radiance `uniform_radiance` in every direction
+  Rgb zenith{0.25f, 0.45f, 1.0f};   // radiance straight up (O(1) units)
+  Rgb horizon{0.75f, 0.85f, 1.0f};  // radiance at and below the horizon
+  Rgb uniform_radiance{1.0f, 1.0f, 1.0f};
+};
+
+struct FogParams {
+  double extinction_per_m = 0.0;   // sigma; 0 = no fog
+  Rgb colour{0.7f, 0.75f, 0.8f};   // in-scattered radiance L_fog
+  double sky_distance_m = 2000.0;  // rays that escape to the sky are fogged over this length
+};
+
+struct WorldParams {
+  std::uint64_t seed = 1;
+  glm::dvec2 size_m{4096.0, 4096.0};  // extent east x north; multiples of cell_m
+  double cell_m = 2.0;                // grid cell edge
+  glm::dvec2 origin{0.0, 0.0};        // world-frame position of the grid's south-west corner
+  TerrainParams terrain;
+  RoadParams road;
+  SunParams sun;
+  SkyParams sky;
+  FogParams fog;
+};
+
+// Reads a "world" object. Every key is optional (defaults above); unknown keys and values out
+// of range throw InputError naming the JSON path.
+WorldParams parse_world_params(ObjectReader& r);
+
+}  // namespace ambisim

@@ -1,0 +1,24 @@
+#include "sim/world/world_queries.h"
+
+namespace ambisim {
+
+TerrainQueries terrain_queries(const World& world) {
+  TerrainQueries q;
+  q.ground_height = [&world](double x, double y) { return world.ground_height(x, y); };
+  q.surface_height = [&world](double x, double y) { return world.surface_height(x, y); };
+  q.road = world.road().empty() ? nullptr : &world.road();
+  q.road_width = world.road_width_m();
+  return q;
+}
+
+WorldQueries planner_world_queries(const World& world) {
+  WorldQueries q;
+  q.ground_height = [&world](double x, double y) { return world.ground_height(x, y); };
+  q.surface_height = [&world](double x, double y) { return world.surface_height(x, y); };
+  q.road = world.road().empty() ? nullptr : &world.road();
+  q.bounds_min = {world.min_xy().x, world.min_xy().y, world.min_surface()};
+  q.bounds_max = {world.max_xy().x, world.max_xy().y, world.max_surface()};
+  return q;
+}
+
+}  // namespace ambisim

@@ -1,0 +1,13 @@
+#pragma once
+// The views of a World that other parts may use: terrain queries for camera paths and
+// receivers, and the game-engine knowledge a planner may use (never the lighting).
+#include "sim/planner.h"
+#include "sim/world/terrain_queries.h"
+#include "sim/world/world.h"
+
+namespace ambisim {
+
+TerrainQueries terrain_queries(const World& world);
+WorldQueries planner_world_queries(const World& world);
+
+}  // namespace ambisim

@@ -1,0 +1,362 @@
+// SHGraph (thesis 8.4.2, Bilaga B): D2 depth formula, 27-child structure with paired links and
+// shared centre anchors, root growth and shrink (D9), octant lookup (D4/D5), fade-in without a
+// step at delivery (D8), re-request before expiry (D7), lifted captures (D14).
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "policies/registry/registry.h"
+#include "policies/thesis/shgraph.h"
+#include "policies/thesis/shgraph_core.h"
+
+using namespace ambisim;
+
+namespace {
+
+// A smooth synthetic light field: L0 follows the position, so interpolation errors show.
+Sh9Rgb field(const glm::dvec3& p) {
+  Sh9Rgb s;
+  s.c[0] = Rgb(static_cast<float>(1.0 + 0.01 * p.x), static_cast<float>(1.0 + 0.01 * p.y),
+               static_cast<float>(1.0 + 0.01 * p.z));
+  return s;
+}
+
+// Drives a core like the simulator does: 1 face per frame, one capture at a time, delivered
+// after 6 frames with the field at the capture position.
+template <class Core>
+struct Harness {
+  Core core;
+  WorldQueries world;
+  double dt = 1.0 / 60.0;
+  std::int64_t frame = 0;
+  glm::dvec3 camera{0.0, 0.0, 50.0};
+  glm::dvec3 velocity{0.0};
+  struct Flight {
+    std::uint64_t tag;
+    glm::dvec3 pos;
+    double t;
+    std::int64_t done;
+  };
+  std::vector<Flight> flights;
+  std::map<std::uint64_t, glm::dvec3> captured;  // tag -> capture position
+  std::vector<CaptureRequest> last_requests;
+
+  explicit Harness(const ShGraphSettings& s, double ground = -1000.0) : core(s) {
+    world.ground_height = [ground](double, double) { return ground; };
+    world.surface_height = world.ground_height;
+  }
+  double time() const { return static_cast<double>(frame) * dt; }
+  FrameContext ctx(bool cut = false) const {
+    FrameContext c;
+    c.frame = frame;
+    c.time = time();
+    c.dt = dt;
+    c.camera_position = camera;
+    c.camera_velocity = velocity;
+    c.camera_cut = cut;
+    c.faces_per_frame = 1.0;
+    c.startable_captures = flights.empty() ? 1 : 0;
+    c.world = &world;
+    return c;
+  }
+  // One frame; `before_deliver` sees the planner after the frame's lookups, before deliveries.
+  template <class F>
+  void step(F&& before_deliver, bool cut = false) {
+    const FrameContext c = ctx(cut);
+    last_requests = core.plan(c);
+    for (std::size_t i = 0; i < last_requests.size(); ++i) {
+      if (static_cast<int>(i) < c.startable_captures) {
+        core.started(last_requests[i].tag);
+        flights.push_back({last_requests[i].tag, last_requests[i].position, c.time, frame + 5});
+      } else {
+        core.refused(last_requests[i].tag);
+      }
+    }
+    core.update(c);
+    before_deliver();
+    for (auto it = flights.begin(); it != flights.end();) {
+      if (it->done == frame) {
+        FinishedProbe p{it->tag, it->pos, field(it->pos), it->t, c.time};
+        captured[it->tag] = it->pos;
+        core.deliver(p);
+        it = flights.erase(it);
+      } else {
+        ++it;
+      }
+    }
+    if (!cut) camera += velocity * dt;
+    ++frame;
+  }
+  void step(bool cut = false) {
+    step([] {}, cut);
+  }
+  void run(double seconds) {
+    const auto n = static_cast<std::int64_t>(std::llround(seconds / dt));
+    for (std::int64_t i = 0; i < n; ++i) step();
+  }
+};
+
+ShGraphSettings settings3() {
+  ShGraphSettings s;
+  s.root_size_m = 81.0;
+  s.min_cell_m = 3.0;  // depths 0..3: 81, 27, 9, 3 m
+  return s;
+}
+
+// Links are in pairs, join same-depth face neighbours, and every such pair is linked.
+template <class Core>
+void check_links(const Core& core, int dim) {
+  const auto& nodes = core.nodes();
+  std::vector<std::int32_t> live;
+  for (std::int32_t i = 0; i < static_cast<std::int32_t>(nodes.size()); ++i) {
+    if (core.node_live(i)) live.push_back(i);
+  }
+  std::map<std::tuple<int, std::int64_t, std::int64_t, std::int64_t>, std::int32_t> by_key;
+  for (auto i : live) {
+    const auto& n = nodes[i];
+    by_key[{n.depth, n.key[0], n.key[1], dim == 3 ? n.key[dim - 1] : 0}] = i;
+    if (n.first_child >= 0) {  // all children exist together
+      for (int c = 0; c < Core::kChildren; ++c) REQUIRE(core.node_live(n.first_child + c));
+    }
+  }
+  int links = 0;
+  for (auto i : live) {
+    const auto& n = nodes[i];
+    for (int d = 0; d < Core::kLinks; ++d) {
+      const int axis = d / 2;
+      const std::int64_t step =
+          (d % 2 ? 1 : -1) *
+          static_cast<std::int64_t>(
+              std::llround(core.cell_size(n.depth) / (core.cell_size(core.max_depth()) / 2.0)));
+      auto k = n.key;
+      k[axis] += step;
+      const auto it = by_key.find({n.depth, k[0], k[1], dim == 3 ? k[dim - 1] : 0});
+      const std::int32_t expected = it == by_key.end() ? -1 : it->second;
+      INFO("node " << i << " dir " << d);
+      REQUIRE(n.link[d] == expected);
+      if (n.link[d] >= 0) {
+        REQUIRE(nodes[n.link[d]].link[d ^ 1] == i);
+        ++links;
+      }
+    }
+  }
+  CHECK(links > 0);
+}
+
+}  // namespace
+
+TEST_CASE("D2: the working cell follows frame rate, budget and speed", "[shgraph]") {
+  // 30 fps, 1 face/frame: R = 5 sets/s. 3D (k = 9): 54 m at 30 m/s, 9 m at 5 m/s.
+  CHECK(min_cell_for_speed(30.0, 30.0, 1.0, 9.0) == Approx(54.0));
+  CHECK(min_cell_for_speed(5.0, 30.0, 1.0, 9.0) == Approx(9.0));
+  // The sheet (k = 3): 18 m and 3 m.
+  CHECK(min_cell_for_speed(30.0, 30.0, 1.0, 3.0) == Approx(18.0));
+  CHECK(min_cell_for_speed(5.0, 30.0, 1.0, 3.0) == Approx(3.0));
+  CHECK(std::isinf(min_cell_for_speed(5.0, 30.0, 0.0, 9.0)));
+
+  ShGraphSettings s;  // root 243 m, min cell 3 m: cells 243, 81, 27, 9, 3
+  CHECK(max_depth(243.0, 3.0) == 4);
+  CHECK(max_depth(243.0, 2.0) == 4);
+  CHECK(max_depth(243.0, 27.0) == 2);
+  CHECK(depth_for_speed(0.0, 60.0, 1.0, s) == 4);   // parked: the finest cell
+  CHECK(depth_for_speed(30.0, 60.0, 1.0, s) == 2);  // s >= 27 m: 27 m cells
+  CHECK(depth_for_speed(30.0, 30.0, 1.0, s) == 1);  // s >= 54 m: 81 m cells
+  CHECK(depth_for_speed(5.0, 30.0, 1.0, s) == 3);   // s >= 9 m: 9 m cells
+  CHECK(depth_for_speed(5.0, 30.0, 2.0, s) == 3);   // s >= 4.5 m: still 9 m (3 m is too fine)
+  CHECK(depth_for_speed(500.0, 30.0, 1.0, s) == 0);
+  int last = 99;
+  for (double v = 0.0; v < 100.0; v += 2.5) {  // resolution falls as speed rises
+    const int d = depth_for_speed(v, 60.0, 1.0, s);
+    CHECK(d <= last);
+    last = d;
+  }
+}
+
+TEST_CASE("SHGraph splits into 27, shares the centre anchor and keeps links in pairs",
+          "[shgraph]") {
+  Harness<ShGraphCore<3>> h(settings3());
+  h.run(8.0);
+  const auto& core = h.core;
+  CHECK(core.working_depth() == 3);  // parked
+  check_links(core, 3);
+  int expanded = 0;
+  for (std::int32_t i = 0; i < static_cast<std::int32_t>(core.nodes().size()); ++i) {
+    const auto& n = core.nodes()[i];
+    if (!core.node_live(i) || n.first_child < 0) continue;
+    ++expanded;
+    const auto& centre = core.nodes()[n.first_child + ShGraphCore<3>::kCentreChild];
+    CHECK(centre.anchor == n.anchor);  // same integer key, same anchor (D10)
+    CHECK(centre.key == n.key);
+    for (int c = 0; c < 27; ++c) {
+      if (c != ShGraphCore<3>::kCentreChild)
+        CHECK(core.nodes()[n.first_child + c].anchor != n.anchor);
+    }
+  }
+  CHECK(expanded >= 4);  // root and the camera's path to the finest depth
+  // High resolution around the camera first: the finest 3x3x3 around it is complete.
+  const CoefficientAnchor* at_camera = core.anchor_at(h.camera, 3);
+  REQUIRE(at_camera != nullptr);
+  CHECK(at_camera->has_coefficients());
+  for (int dx = -1; dx <= 1; ++dx) {
+    for (int dz = -1; dz <= 1; ++dz) {
+      const auto* a = core.anchor_at(h.camera + glm::dvec3(3.0 * dx, 3.0, 3.0 * dz), 3);
+      REQUIRE(a != nullptr);
+      CHECK(a->has_coefficients());
+    }
+  }
+}
+
+TEST_CASE("SHGraph lookup uses at most 8 sets, one per octant, and is accurate near the camera",
+          "[shgraph]") {
+  Harness<ShGraphCore<3>> h(settings3());
+  h.run(10.0);
+  int multi = 0;
+  for (double x = -6.0; x <= 6.0; x += 1.3) {
+    for (double y = -6.0; y <= 6.0; y += 1.7) {
+      const glm::dvec3 p = h.camera + glm::dvec3(x, y, 0.7);
+      const LookupResult r = h.core.lookup(p);
+      REQUIRE_FALSE(r.fell_back);
+      REQUIRE(r.contributor_count >= 1);
+      REQUIRE(r.contributor_count <= 8);
+      multi += r.contributor_count > 1;
+      std::set<int> octants;
+      float wsum = 0.0f;
+      for (int k = 0; k < r.contributor_count; ++k) {
+        const glm::dvec3 c = h.captured.at(r.contributors[k].tag);
+        octants.insert((c.x >= p.x) | ((c.y >= p.y) << 1) | ((c.z >= p.z) << 2));
+        wsum += r.contributors[k].weight;
+      }
+      CHECK(static_cast<int>(octants.size()) == r.contributor_count);
+      CHECK(wsum == Approx(1.0f));
+      CHECK(r.spacing_m == Approx(3.0));  // the finest level around the parked camera
+      // Interpolated by distance between sets at most one cell away: within a few cm of
+      // light-field units per metre of gradient.
+      CHECK(std::abs(r.sh.c[0].x - field(p).c[0].x) < 0.03f);
+    }
+  }
+  CHECK(multi > 10);
+}
+
+TEST_CASE("SHGraph lookup goes up a level where a level has no sets", "[shgraph]") {
+  Harness<ShGraphCore<3>> h(settings3());
+  h.run(10.0);
+  // 30 m away the finest level is empty; the answer comes from a coarser level.
+  const LookupResult far = h.core.lookup(h.camera + glm::dvec3(30.0, 0.0, 0.0));
+  CHECK_FALSE(far.fell_back);
+  CHECK(far.contributor_count >= 1);
+  CHECK(far.spacing_m >= 27.0);
+  // Outside the root: a coarse default, flagged as fallback.
+  const LookupResult outside = h.core.lookup(glm::dvec3(1e5, 0.0, 0.0));
+  CHECK(outside.fell_back);
+}
+
+TEST_CASE("SHGraph: no step in a lookup when new coefficients arrive, converging after fade_s",
+          "[shgraph]") {
+  Harness<ShGraphCore<3>> h(settings3());
+  h.run(2.0);
+  int checked = 0;
+  for (int i = 0; i < 120 && checked < 5; ++i) {
+    // A capture finishing this frame: look there just before and just after its delivery.
+    if (h.flights.empty() || h.flights.front().done != h.frame) {
+      h.step();
+      continue;
+    }
+    const glm::dvec3 at = h.flights.front().pos;  // no lift: the ground is far below
+    const Sh9Rgb expected = field(at);
+    LookupResult before;
+    h.step([&] { before = h.core.lookup(at); });
+    if (before.fell_back) continue;
+    LookupResult after;
+    h.step([&] { after = h.core.lookup(at); });  // the next frame: the set is usable
+    CHECK(after.sh == before.sh);
+    // fade_s = 1 s later the lookup there is the new set.
+    for (int f = 0; f < 61; ++f) h.step();
+    const LookupResult settled = h.core.lookup(at);
+    CHECK(settled.sh.c[0].x == Approx(expected.c[0].x).margin(1e-5));
+    CHECK(settled.sh.c[0].z == Approx(expected.c[0].z).margin(1e-5));
+    ++checked;
+  }
+  CHECK(checked >= 3);
+}
+
+TEST_CASE("SHGraph re-requests a set lifetime - (2 latency + 1 s) after its capture", "[shgraph]") {
+  ShGraphSettings s;
+  s.root_size_m = 27.0;
+  s.min_cell_m = 27.0;  // one cell: the root's anchor only
+  Harness<ShGraphCore<3>> h(s);
+  h.step();
+  REQUIRE(h.last_requests.size() == 1);
+  const glm::dvec3 pos = h.last_requests[0].position;
+  // Latency 6 frames = 0.1 s: margin 1.2 s, so the request comes back after 58.8 s.
+  bool early = false;
+  while (h.time() < 58.75) {
+    h.step();
+    early = early || !h.last_requests.empty();
+  }
+  CHECK_FALSE(early);
+  while (h.last_requests.empty() && h.time() < 59.5) h.step();
+  REQUIRE(h.last_requests.size() == 1);
+  // Planned in the frame after the first update past 58.8 s.
+  const double planned = h.time() - h.dt;
+  CHECK(planned > 58.8);
+  CHECK(planned <= 58.8 + 2.0 * h.dt + 1e-9);
+  CHECK(h.last_requests[0].position == pos);
+  // The replacement arrives before the old set expires: served all along.
+  h.run(3.0);
+  CHECK_FALSE(h.core.lookup(pos).fell_back);
+  CHECK(h.core.lookup(pos).data_time > 58.0);
+}
+
+TEST_CASE("SHGraph grows its root to capture outside it and shrinks back", "[shgraph]") {
+  ShGraphSettings s = settings3();
+  s.timing.lifetime_s = 4.0;
+  Harness<ShGraphCore<3>> h(s);
+  h.run(3.0);
+  CHECK(h.core.root_depth() == 0);
+  CHECK(h.core.root_size_now() == Approx(81.0));
+  // A camera cut out of the root volume, to the middle of the next normal-size cell (so its
+  // neighbourhood lies in one child of the grown root once the old sets are gone).
+  h.camera += glm::dvec3(81.0, 0.0, 0.0);
+  h.step(true);
+  CHECK(h.core.root_depth() == -1);  // one growth (3x) suffices
+  CHECK(h.core.root_size_now() == Approx(243.0));
+  check_links(h.core, 3);
+  h.run(1.0);
+  CHECK(h.core.root_depth() == -1);  // both children hold sets: the grown root stays
+  // The old sets expire (4 s), then 5 s of one occupied child: back to the normal size.
+  h.run(9.0);
+  CHECK(h.core.root_depth() == 0);
+  CHECK(h.core.root_size_now() == Approx(81.0));
+  const LookupResult r = h.core.lookup(h.camera);
+  CHECK_FALSE(r.fell_back);
+  check_links(h.core, 3);
+}
+
+TEST_CASE("SHGraph prunes branches without coefficients", "[shgraph]") {
+  ShGraphSettings s = settings3();
+  s.timing.lifetime_s = 3.0;
+  Harness<ShGraphCore<3>> h(s);
+  h.run(3.0);
+  const auto nodes_before = h.core.stats().nodes;
+  h.velocity = glm::dvec3(0.0, 4.0, 0.0);  // leave slowly; the old sets expire behind
+  h.run(9.0);
+  check_links(h.core, 3);
+  // Far from the old place nothing but coarse structure is left there.
+  CHECK(h.core.anchor_at(glm::dvec3(0.0, 0.0, 50.0), 3) == nullptr);
+  CHECK(h.core.stats().nodes < nodes_before + 27 * 30);
+}
+
+TEST_CASE("SHGraph lifts captures out of solids and skips cells below the floor", "[shgraph]") {
+  Harness<ShGraphCore<3>> h(settings3(), 49.0);  // terrain 1 m below the camera
+  h.run(4.0);
+  REQUIRE(!h.captured.empty());
+  for (const auto& [tag, p] : h.captured) CHECK(p.z >= 49.5);
+  // And the registered planners echo their parameters.
+  auto vp = make_planner("shgraph+vp");
+  CHECK(vp->params()["predict"] == true);
+  CHECK(vp->params()["lifetime_s"] == 60.0);
+  CHECK(vp->params()["k"] == 9.0);
+  CHECK(make_planner("shgraph")->params()["predict"] == false);
+  CHECK(make_planner("shgraph+route")->params()["route"] == true);
+}

@@ -1,0 +1,41 @@
+#include "tests/support/scenario_fixtures.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <memory>
+
+#include "sim/base/json_reader.h"
+
+namespace ambisim::test {
+
+std::vector<Scenario> short_scenarios(double seconds, bool with_small_drive) {
+  std::vector<std::string> files;
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::string(AMBISIM_SOURCE_DIR) + "/scenarios")) {
+    if (e.path().extension() == ".json" && e.path().stem() != "default_world") {
+      files.push_back(e.path().string());
+    }
+  }
+  std::sort(files.begin(), files.end());
+  std::vector<Scenario> out;
+  for (const auto& f : files) {
+    nlohmann::json doc = load_json_file(f);
+    doc["frames"]["duration_s"] = seconds;
+    doc["reference"] = {{"face_size", 8}, {"interval_s", 0.1}};
+    out.push_back(parse_scenario(doc, f));
+  }
+  if (with_small_drive) out.push_back(load_scenario(kSmallDrive));
+  return out;
+}
+
+const World& world_for(const WorldParams& p) {
+  static std::map<std::string, std::unique_ptr<World>> cache;
+  const std::string key =
+      nlohmann::json{{"seed", p.seed}, {"size", {p.size_m.x, p.size_m.y}}}.dump();
+  auto& slot = cache[key];
+  if (!slot) slot = std::make_unique<World>(p);
+  return *slot;
+}
+
+}  // namespace ambisim::test

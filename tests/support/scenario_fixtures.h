@@ -1,0 +1,31 @@
+#pragma once
+// Inputs shared by the planner tests: every shipped scenario cut short with a cheap reference,
+// one World per world description, and the small unit-test drive.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sim/run/reference_track.h"
+#include "sim/scenario/scenario.h"
+#include "sim/world/world.h"
+
+namespace ambisim::test {
+
+inline const std::string kSmallDrive =
+    std::string(AMBISIM_SOURCE_DIR) + "/tests/data/small_drive.json";
+
+// Every scenario file under scenarios/ (sorted by path), cut to its first `seconds` with an
+// 8x8 reference on a 0.1 s grid; tests/data/small_drive.json appended when asked.
+std::vector<Scenario> short_scenarios(double seconds, bool with_small_drive = false);
+
+// The world of `p`, built once per (seed, size) for the whole test binary.
+const World& world_for(const WorldParams& p);
+
+// tests/data/small_drive.json with its world and its full (every-frame) reference.
+struct SmallDrive {
+  Scenario scenario = load_scenario(kSmallDrive);
+  World world{scenario.world};
+  std::shared_ptr<const ReferenceTrack> reference = compute_reference_track(scenario, world);
+};
+
+}  // namespace ambisim::test
