@@ -17,7 +17,7 @@ if [ -z "$out" ]; then
 fi
 mkdir -p "$out"
 echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores"
-echo "sweep:   $sweep"
+echo "sweep:   ${sweep#"$root"/}"
 
 declare -A wall
 for j in 1 2; do
