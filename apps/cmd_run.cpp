@@ -69,10 +69,13 @@ void run_run(const RunOptions& o) {
   if (!o.quiet) {
     const Summary& s = result.summary;
     std::printf(
-        "%s on %s: %lld frames, dE00 mean %.3f p95 %.3f max %.3f, pops/min %.2f, "
-        "coverage %.3f, faces used %lld, max live probes %lld (%.1f s)\n",
+        "%s on %s: %lld frames; viewed: dE00 mean %.3f p95 %.3f, pops/min %.2f; uniform: dE00 "
+        "mean %.3f p95 %.3f, pops/min %.2f; response median %.2f s (%lld events); coverage "
+        "%.3f, faces used %lld, max live probes %lld (%.1f s)\n",
         planner->name().c_str(), scenario.name.c_str(), static_cast<long long>(s.frames),
-        s.de2000.mean, s.de2000.p95, s.de2000.max, s.pops.per_min, s.coverage.mean,
+        s.de2000_viewed.mean, s.de2000_viewed.p95, s.pops_viewed.per_min, s.de2000.mean,
+        s.de2000.p95, s.pops.per_min, s.response.median_s,
+        static_cast<long long>(s.response.events), s.coverage.mean,
         static_cast<long long>(s.faces.used), static_cast<long long>(s.probes.max_live),
         result.timing.total_s);
   }

@@ -2,6 +2,8 @@
 // The one interface every sampling planner implements (OMPL-style: the simulator, the sweep
 // and the shared contract test only ever see this). Implementations live in policies/.
 //
+// Before the first frame: preload(ctx) -> captures rendered outside the budget, as a game does
+// at load time (a bake); delivered before frame 0 and counted apart (bake.*). Most return none.
 // The contract, per frame (see sim/run/simulator.cpp):
 //   1. plan(ctx)      -> capture requests in priority order. The simulator starts at most
 //                        ctx.startable_captures of them, in order; each one it does not start
@@ -102,6 +104,10 @@ class Planner {
   virtual std::string name() const = 0;
   virtual nlohmann::json params() const = 0;  // every parameter, echoed into results
 
+  // Captures to render before the first frame without budget (ctx is frame 0's context). The
+  // simulator renders each at ctx.face_size, delivers it (requested and finished at time 0) and
+  // reports the count and the faces as the run's bake cost. Default: none.
+  virtual std::vector<CaptureRequest> preload(const FrameContext& /*ctx*/) { return {}; }
   virtual std::vector<CaptureRequest> plan(const FrameContext& ctx) = 0;
   virtual void started(std::uint64_t tag) = 0;
   virtual void refused(std::uint64_t /*tag*/) {}

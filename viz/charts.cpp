@@ -287,8 +287,8 @@ SweepData load_sweep_data(const std::string& dir) {
   const int c_fps = s.require_column("fps");
   const int c_frames = s.require_column("frames");
   const int c_dur = s.require_column("duration_s");
-  const int c_p95 = s.require_column("error.de2000.p95");
-  const int c_pops = s.require_column("pops.per_min");
+  const int c_p95 = s.require_column("error.viewed.de2000.p95");
+  const int c_pops = s.require_column("pops.viewed.per_min");
   const int c_cov = s.require_column("coverage.mean");
   if (s.rows.empty()) throw InputError(d.summary_path, "", "no runs");
 
@@ -489,9 +489,9 @@ std::vector<ChartPanel> accuracy_cost_panels(const SweepData& d, const ScenarioI
   *title =
       sc.name + ": accuracy against cost (" + speed_text(sc, runs) + ", " + fps_text(runs) + ")";
   ChartPanel a;
-  a.title = "ΔE00 p95 vs capture budget";
+  a.title = "viewed ΔE00 p95 vs capture budget";
   a.x_label = "capture budget (cube faces per second)";
-  a.y_label = "ΔE00 p95 (CIEDE2000)";
+  a.y_label = "viewed ΔE00 p95 (CIEDE2000)";
   a.series = lines_by_label(
       d, runs, [](const RunPoint& r) { return r.faces_per_s; },
       [](const RunPoint& r) { return r.de_p95; });
@@ -500,9 +500,9 @@ std::vector<ChartPanel> accuracy_cost_panels(const SweepData& d, const ScenarioI
   a.series.insert(a.series.begin(), pareto_front(a.series));
 
   ChartPanel b;
-  b.title = "ΔE00 p95 vs planner CPU time";
+  b.title = "viewed ΔE00 p95 vs planner CPU time";
   b.x_label = "planner time per frame (µs, measured)";
-  b.y_label = "ΔE00 p95 (CIEDE2000)";
+  b.y_label = "viewed ΔE00 p95 (CIEDE2000)";
   b.series = lines_by_label(
       d, runs, [](const RunPoint& r) { return r.us_per_frame; },
       [](const RunPoint& r) { return r.de_p95; });
@@ -551,14 +551,14 @@ std::vector<ChartPanel> speed_panels(const SweepData& d, const ScenarioInfo& sc,
   const std::string x_label =
       sc.speed_known ? "camera speed (m/s)" : "camera speed (x the scenario's speed)";
   ChartPanel a;
-  a.title = "ΔE00 p95 vs camera speed";
+  a.title = "viewed ΔE00 p95 vs camera speed";
   a.x_label = x_label;
-  a.y_label = "ΔE00 p95 (CIEDE2000)";
+  a.y_label = "viewed ΔE00 p95 (CIEDE2000)";
   a.series = make([](const RunPoint& r) { return r.de_p95; });
   ChartPanel b;
-  b.title = "colour pops vs camera speed";
+  b.title = "viewed colour pops vs camera speed";
   b.x_label = x_label;
-  b.y_label = "pops per receiver-minute";
+  b.y_label = "viewed pops per viewed receiver-minute";
   b.series = make([](const RunPoint& r) { return r.pops_per_min; });
   a.stagger_widths = b.stagger_widths = true;
   return {a, b};
@@ -617,19 +617,24 @@ std::vector<ChartPanel> series_panels(const RunPoint& run, bool speed_known,
   err.x_label = "time (s)";
   err.y_label = "ΔE00 (CIEDE2000)";
   err.series = {line("max over receivers", json_series(s, "de2000_max"), 1),
-                line("mean over receivers", json_series(s, "de2000_mean"), 0)};
+                line("mean over receivers", json_series(s, "de2000_mean"), 0),
+                line("viewed mean", json_series(s, "de2000_viewed_mean"), 4)};
   ChartPanel pops;
   pops.title = "colour pops";
   pops.x_label = "time (s)";
   pops.y_label = "pops so far (count)";
   {
-    auto p = json_series(s, "pops");
-    double sum = 0.0;
-    for (double& v : p) {
-      if (std::isfinite(v)) sum += v;
-      v = sum;
-    }
-    pops.series = {line("cumulative pops", p, 3)};
+    const auto cumulative = [&](const char* key) {
+      auto p = json_series(s, key);
+      double sum = 0.0;
+      for (double& v : p) {
+        if (std::isfinite(v)) sum += v;
+        v = sum;
+      }
+      return p;
+    };
+    pops.series = {line("cumulative pops (all receivers)", cumulative("pops"), 3),
+                   line("cumulative pops where seen", cumulative("viewed_pops"), 5)};
   }
   ChartPanel live;
   live.title = "planner state";

@@ -69,6 +69,11 @@ Sh9Rgb ConstantAmbientPlanner::keep(Mode mode, const Sh9Rgb& sh) {
   return r;
 }
 
+std::vector<CaptureRequest> ConstantAmbientPlanner::preload(const FrameContext& ctx) {
+  requested_ = true;
+  return {{ctx.camera_position, tag_}};
+}
+
 std::vector<CaptureRequest> ConstantAmbientPlanner::plan(const FrameContext& ctx) {
   if (held_ || requested_ || ctx.startable_captures <= 0) return {};
   requested_ = true;  // cleared again if refused

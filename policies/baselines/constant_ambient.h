@@ -1,12 +1,13 @@
 #pragma once
 // The single-colour baselines of thesis 10.1 (L711-734), made fair: one capture at the camera
-// at the start, then a truncated copy of it everywhere, forever.
+// at the start, taken at load time (preload: before the first frame, as a game sets its
+// ambient before showing anything), then a truncated copy of it everywhere, forever.
 // - `constant` (10.1.1): keeps L00 only, the DC average of all incoming light.
 // - `hemisphere` (10.1.2): keeps L00 and the vertical L10 term: a sky colour above and a
 //   ground colour below, interpolated by the normal's height (lerp(ground, sky, (1 + n.z)/2)
 //   is exactly what L00 + L10 irradiance gives).
-// Before the capture arrives both return an artist colour from their parameters (a uniform
-// radiance for constant, sky above / ground below for hemisphere).
+// Without the capture (a planner used outside the simulator) both return an artist colour from
+// their parameters (a uniform radiance for constant, sky above / ground below for hemisphere).
 // Coverage: every lookup reports fell_back = true and spacing_m = infinity, also after the
 // capture arrived: one set for the whole world has no spatial structure, so it serves no
 // point "at a spacing". The capture is still listed as the contributor (for staleness).
@@ -30,7 +31,9 @@ class ConstantAmbientPlanner final : public Planner {
   std::string name() const override;
   nlohmann::json params() const override { return params_.to_json(); }
 
-  // Requests one capture at the camera until one has been started.
+  // The one capture, at the camera before the first frame; plan() asks for it again only if it
+  // never arrived.
+  std::vector<CaptureRequest> preload(const FrameContext& ctx) override;
   std::vector<CaptureRequest> plan(const FrameContext& ctx) override;
   void started(std::uint64_t tag) override;
   void refused(std::uint64_t tag) override;

@@ -5,6 +5,8 @@
 #include <limits>
 #include <vector>
 
+#include "sim/base/hash.h"
+
 namespace ambisim {
 namespace {
 
@@ -69,6 +71,43 @@ double mean_of(std::span<const double> samples) {
   double s = 0.0;
   for (double x : samples) s += x;
   return s / static_cast<double>(samples.size());
+}
+
+double weighted_percentile(std::span<WeightedSample> samples, double p) {
+  double total = 0.0;
+  for (const auto& s : samples) total += s.weight > 0.0f ? static_cast<double>(s.weight) : 0.0;
+  if (!(total > 0.0)) return kNaN;
+  std::sort(samples.begin(), samples.end(), [](const WeightedSample& a, const WeightedSample& b) {
+    return a.value < b.value || (a.value == b.value && a.weight < b.weight);
+  });
+  const double need = std::clamp(p, 0.0, 100.0) / 100.0 * total;
+  double cumulative = 0.0;
+  double last = kNaN;
+  for (const auto& s : samples) {
+    if (!(s.weight > 0.0f)) continue;
+    cumulative += static_cast<double>(s.weight);
+    last = s.value;
+    if (cumulative >= need) return s.value;
+  }
+  return last;  // rounding left the sum a hair short of `need`: the largest weighted sample
+}
+
+Interval bootstrap_mean_interval(std::span<const double> values, std::uint64_t seed,
+                                 int resamples) {
+  const std::size_t n = values.size();
+  if (n == 0) return {kNaN, kNaN};
+  if (n == 1) return {values[0], values[0]};
+  std::vector<double> means(static_cast<std::size_t>(std::max(resamples, 1)));
+  for (std::size_t r = 0; r < means.size(); ++r) {
+    double sum = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::uint64_t h = splitmix64(hash_combine(hash_combine(seed, r), k));
+      sum += values[static_cast<std::size_t>(h % n)];  // n is tiny: the modulo bias is ~n/2^64
+    }
+    means[r] = sum / static_cast<double>(n);
+  }
+  return {percentile_nearest_rank(std::span<const double>(means), 2.5),
+          percentile_nearest_rank(std::span<const double>(means), 97.5)};
 }
 
 }  // namespace ambisim

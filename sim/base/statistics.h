@@ -52,4 +52,29 @@ std::size_t nearest_rank_index(std::size_t n, double p);
 // Arithmetic mean (NaN when empty), summed in input order.
 double mean_of(std::span<const double> samples);
 
+// A sample with a weight >= 0, for the weighted percentile.
+struct WeightedSample {
+  float value = 0.0f;
+  float weight = 0.0f;
+};
+
+// Weighted nearest-rank percentile: the smallest sample value x such that the samples <= x
+// carry at least p percent of the total weight. With equal weights it is the nearest-rank
+// percentile above (up to the rounding of the weight sums). Zero-weight samples never count;
+// NaN without positive weight. Sorts `samples` in place (by value, then weight: the result does
+// not depend on the input order). p in [0, 100] (clamped).
+double weighted_percentile(std::span<WeightedSample> samples, double p);
+
+// The 95 % confidence interval of a mean by the percentile bootstrap (Efron & Tibshirani 1993,
+// ch. 13): `resamples` resamples of the values with replacement, drawn from a counter-based
+// generator seeded by `seed` (the same inputs give the same interval, on any machine), the 2.5th
+// and 97.5th nearest-rank percentiles of the resampled means. One value gives [x, x]; no value
+// gives NaNs.
+struct Interval {
+  double low = 0.0;
+  double high = 0.0;
+};
+Interval bootstrap_mean_interval(std::span<const double> values, std::uint64_t seed,
+                                 int resamples = 10000);
+
 }  // namespace ambisim

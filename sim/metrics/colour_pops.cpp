@@ -8,17 +8,28 @@
 
 namespace ambisim {
 
-double unexplained_change(const Lab& planner_prev, const Lab& planner_now,
-                          const Lab& reference_prev, const Lab& reference_now) {
-  return ciede2000(planner_now, planner_prev + (reference_now - reference_prev));
+Lab explained_move(const Lab& dp, const Lab& dr) {
+  const double rr = dr.L * dr.L + dr.a * dr.a + dr.b * dr.b;
+  if (!(rr > 0.0)) return Lab{};  // the truth is still: nothing is explained
+  const double k = std::clamp((dp.L * dr.L + dp.a * dr.a + dp.b * dr.b) / rr, 0.0, 1.0);
+  return Lab{k * dr.L, k * dr.a, k * dr.b};
 }
 
-PopTracker::PopTracker(double threshold_de) : threshold_(threshold_de) {}
+double unexplained_change(const Lab& planner_prev, const Lab& planner_now,
+                          const Lab& reference_prev, const Lab& reference_now) {
+  const Lab e = explained_move(planner_now - planner_prev, reference_now - reference_prev);
+  return ciede2000(planner_now, planner_prev + e);
+}
+
+PopTracker::PopTracker(double threshold_de, double masking)
+    : threshold_(threshold_de), masking_(masking) {}
 
 PopEvaluation PopTracker::update(std::uint64_t id, std::int64_t frame, std::span<const Lab> planner,
-                                 std::span<const Lab> reference) {
-  if (planner.size() != reference.size()) {
-    throw std::invalid_argument("colour pops: planner and reference normal counts differ");
+                                 std::span<const Lab> reference,
+                                 std::span<const double> visible_share) {
+  if (planner.size() != reference.size() ||
+      (!visible_share.empty() && visible_share.size() != planner.size())) {
+    throw std::invalid_argument("colour pops: planner, reference and visibility counts differ");
   }
   PopEvaluation ev;
   auto it = last_.find(id);
@@ -30,11 +41,24 @@ PopEvaluation PopTracker::update(std::uint64_t id, std::int64_t frame, std::span
     }
     if (s.frame == frame - 1 && s.planner.size() == planner.size()) {
       ev.has_previous = true;
-      for (std::size_t n = 0; n < planner.size(); ++n) {
-        ev.change = std::max(
-            ev.change, unexplained_change(s.planner[n], planner[n], s.reference[n], reference[n]));
+      // The receiver's own true jump: its largest over the normals (the whole object changes).
+      double true_jump = 0.0;
+      if (masking_ > 0.0) {
+        for (std::size_t n = 0; n < planner.size(); ++n) {
+          true_jump = std::max(true_jump, ciede2000(reference[n], s.reference[n]));
+        }
       }
-      ev.pop = ev.change > threshold_;
+      const double limit = std::max(threshold_, masking_ * true_jump);
+      for (std::size_t n = 0; n < planner.size(); ++n) {
+        const double u = unexplained_change(s.planner[n], planner[n], s.reference[n], reference[n]);
+        const bool seen = !visible_share.empty() && visible_share[n] > 0.0;
+        ev.change = std::max(ev.change, u);
+        ev.pop = ev.pop || u > limit;
+        if (seen) {
+          ev.viewed_change = std::max(ev.viewed_change, u);
+          ev.viewed_pop = ev.viewed_pop || u > limit;
+        }
+      }
     }
   } else {
     it = last_.emplace(id, State{}).first;

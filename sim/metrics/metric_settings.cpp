@@ -30,6 +30,15 @@ DemandLayout parse_demand(ObjectReader& r) {
   return d;
 }
 
+ResponseSettings parse_response(ObjectReader& r) {
+  ResponseSettings s;
+  s.event_de = r.number("event_de", s.event_de, Range::positive());
+  s.window_s = r.number("window_s", s.window_s, {0.0, 60.0, false, true});
+  s.settled_de = r.number("settled_de", s.settled_de, Range::positive());
+  r.finish();
+  return s;
+}
+
 }  // namespace
 
 MetricSettings parse_metric_settings(ObjectReader& r) {
@@ -39,10 +48,12 @@ MetricSettings parse_metric_settings(ObjectReader& r) {
   s.exposure = r.number("exposure", s.exposure, Range::non_negative());
   s.exposure_key = r.number("exposure_key", s.exposure_key, {0.0, 1.0, true, false});
   s.pop_threshold_de = r.number("pop_threshold_de", s.pop_threshold_de, Range::positive());
+  s.pop_masking = r.number("pop_masking", s.pop_masking, Range::unit());
   s.rel_error_floor = r.number("rel_error_floor", s.rel_error_floor, Range::positive());
   s.accuracy_every = r.integer("accuracy_every", s.accuracy_every, Range::closed(1, 1e6));
   if (auto c = r.optional_object("coverage")) s.coverage = parse_coverage(*c);
   if (auto d = r.optional_object("demand")) s.demand = parse_demand(*d);
+  if (auto p = r.optional_object("response")) s.response = parse_response(*p);
   r.finish();
   return s;
 }
@@ -53,6 +64,7 @@ nlohmann::ordered_json metric_settings_to_json(const MetricSettings& s) {
   j["exposure"] = s.exposure;
   j["exposure_key"] = s.exposure_key;
   j["pop_threshold_de"] = s.pop_threshold_de;
+  j["pop_masking"] = s.pop_masking;
   j["rel_error_floor"] = s.rel_error_floor;
   j["accuracy_every"] = s.accuracy_every;
   j["coverage"] = {{"min_spacing_m", s.coverage.min_spacing_m},
@@ -61,6 +73,9 @@ nlohmann::ordered_json metric_settings_to_json(const MetricSettings& s) {
                  {"azimuths", s.demand.azimuths},
                  {"ahead_s", s.demand.ahead_s},
                  {"height_m", s.demand.height_m}};
+  j["response"] = {{"event_de", s.response.event_de},
+                   {"window_s", s.response.window_s},
+                   {"settled_de", s.response.settled_de}};
   return j;
 }
 

@@ -9,6 +9,7 @@
 
 #include "sim/colour/tone_map.h"
 #include "sim/metrics/accuracy.h"
+#include "sim/metrics/view_weights.h"
 
 namespace ambisim {
 namespace {
@@ -52,7 +53,9 @@ std::string join(const std::vector<std::string>& cells) {
 }  // namespace
 
 RunMetrics::RunMetrics(MetricSettings settings)
-    : settings_(std::move(settings)), pops_(settings_.pop_threshold_de) {
+    : settings_(std::move(settings)),
+      pops_(settings_.pop_threshold_de, settings_.pop_masking),
+      response_(settings_.response) {
   if (!(settings_.exposure > 0.0) || !std::isfinite(settings_.exposure)) {
     throw std::invalid_argument(
         "metrics: exposure must be resolved to a finite value > 0 (see reference_exposure)");
@@ -61,13 +64,14 @@ RunMetrics::RunMetrics(MetricSettings settings)
   if (settings_.accuracy_every < 1) throw std::invalid_argument("metrics: accuracy_every < 1");
   planner_lab_.resize(settings_.normals.size());
   reference_lab_.resize(settings_.normals.size());
+  share_.resize(settings_.normals.size());
 }
 
 void RunMetrics::require_frame(const char* what) const {
   if (!in_frame_) throw std::logic_error(std::string("metrics: ") + what + " outside a frame");
 }
 
-void RunMetrics::begin_frame(std::int64_t frame, double time, double dt) {
+void RunMetrics::begin_frame(std::int64_t frame, double time, double dt, bool camera_cut) {
   if (in_frame_) throw std::logic_error("metrics: begin_frame before end_frame");
   if (have_frame_ && frame <= row_.frame) {
     throw std::logic_error("metrics: frame numbers must increase");
@@ -80,26 +84,33 @@ void RunMetrics::begin_frame(std::int64_t frame, double time, double dt) {
   row_.time = time;
   row_.dt = dt;
   row_.accuracy_evaluated = accuracy_frame(frame);
+  if (camera_cut) pops_.forget_all();
   frame_de_ = {};
   frame_rel_ = {};
   frame_change_ = {};
   frame_stale_ = {};
+  frame_de_viewed_ = {};
   std::fill(std::begin(frame_served_), std::end(frame_served_), 0);
   std::fill(std::begin(frame_demand_), std::end(frame_demand_), 0);
   frame_costs_given_ = false;
 }
 
 void RunMetrics::receiver(std::uint64_t id, std::span<const Rgb> planner_e,
-                          std::span<const Rgb> reference_e, const LookupResult& lookup) {
+                          std::span<const Rgb> reference_e, const LookupResult& lookup,
+                          const ReceiverViewing& view) {
   require_frame("receiver");
   const std::size_t n = settings_.normals.size();
   if (planner_e.size() != n || reference_e.size() != n) {
     throw std::invalid_argument("metrics: receiver " + std::to_string(id) + " needs " +
                                 std::to_string(n) + " planner and reference irradiances");
   }
+  const double weight = view.weight > 0.0 && std::isfinite(view.weight) ? view.weight : 0.0;
+  double error_sum = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
     planner_lab_[k] = display_lab(planner_e[k], settings_.exposure);
     reference_lab_[k] = display_lab(reference_e[k], settings_.exposure);
+    share_[k] = weight > 0.0 ? normal_visible_share(settings_.normals[k], view.to_camera) : 0.0;
+    error_sum += display_difference(planner_lab_[k], reference_lab_[k]);
   }
   if (row_.accuracy_evaluated) {
     for (std::size_t k = 0; k < n; ++k) {
@@ -111,18 +122,33 @@ void RunMetrics::receiver(std::uint64_t id, std::span<const Rgb> planner_e,
       rel_.add(rel);
       de_samples_.push_back(static_cast<float>(de));
       rel_samples_.push_back(static_cast<float>(rel));
+      const double w = weight * share_[k];
+      if (w > 0.0) {
+        frame_de_viewed_.add(de, w);
+        de_viewed_.add(de, w);
+        de_viewed_max_.add(de);
+        de_viewed_samples_.push_back({static_cast<float>(de), static_cast<float>(w)});
+      }
     }
   }
-  const PopEvaluation ev = pops_.update(id, row_.frame, planner_lab_, reference_lab_);
+  const PopEvaluation ev = pops_.update(id, row_.frame, planner_lab_, reference_lab_, share_);
   if (ev.has_previous) {
     frame_change_.add(ev.change);
     change_.add(ev.change);
+    if (weight > 0.0) change_viewed_.add(ev.viewed_change);
   }
   if (ev.pop) {
     ++row_.pops;
     ++pop_count_;
     pop_sum_ += ev.change;
   }
+  if (ev.viewed_pop && weight > 0.0) {
+    ++row_.viewed_pops;
+    ++viewed_pop_count_;
+    viewed_pop_weight_ += weight;
+  }
+  row_.view_weight += weight;
+  response_.update(id, row_.frame, row_.time, reference_lab_, error_sum / static_cast<double>(n));
   if (!lookup.fell_back) {
     const double stale = row_.time - lookup.data_time;
     frame_stale_.add(stale);
@@ -158,9 +184,11 @@ FrameRow RunMetrics::end_frame() {
   require_frame("end_frame");
   in_frame_ = false;
   pops_.end_frame(row_.frame);
+  response_.end_frame(row_.frame);
   const double dt = row_.dt;
 
   row_.de2000_mean = frame_de_.mean();
+  row_.de2000_viewed_mean = frame_de_viewed_.mean();
   row_.de2000_max = frame_de_.max();
   row_.rel_mean = frame_rel_.mean();
   row_.change_max = frame_change_.max();
@@ -185,6 +213,7 @@ FrameRow RunMetrics::end_frame() {
   ++frames_;
   duration_s_ += dt;
   receiver_seconds_ += static_cast<double>(row_.receivers) * dt;
+  viewed_seconds_ += row_.view_weight * dt;
   receiver_frames_ += row_.receivers;
   max_live_ = std::max(max_live_, row_.live_probes);
   max_bytes_ = std::max(max_bytes_, row_.bytes);
@@ -198,8 +227,13 @@ Summary RunMetrics::summary() const {
   s.frames = frames_;
   s.duration_s = duration_s_;
   s.receiver_minutes = receiver_seconds_ / 60.0;
+  s.viewed_receiver_minutes = viewed_seconds_ / 60.0;
   s.receiver_frames = receiver_frames_;
   s.samples = de_.count();
+  {
+    std::vector<WeightedSample> viewed = de_viewed_samples_;  // sorted by the percentile
+    s.de2000_viewed = {de_viewed_.mean(), weighted_percentile(viewed, 95.0), de_viewed_max_.max()};
+  }
   s.de2000 = {de_.mean(), percentile_nearest_rank(std::span<const float>(de_samples_), 95.0),
               de_.max()};
   s.rel = {rel_.mean(), percentile_nearest_rank(std::span<const float>(rel_samples_), 95.0),
@@ -209,6 +243,13 @@ Summary RunMetrics::summary() const {
   s.pops.max = change_.max();
   s.pops.per_min = s.receiver_minutes > 0.0 ? static_cast<double>(pop_count_) / s.receiver_minutes
                                             : std::nan("");
+  s.pops_viewed.count = viewed_pop_count_;
+  s.pops_viewed.sum = viewed_pop_weight_;
+  s.pops_viewed.max = change_viewed_.max();
+  s.pops_viewed.per_min = s.viewed_receiver_minutes > 0.0
+                              ? viewed_pop_weight_ / s.viewed_receiver_minutes
+                              : std::nan("");
+  s.response = response_.summary();
   s.coverage.mean = coverage_all_.mean();
   s.coverage.receivers = coverage_receivers_.mean();
   s.coverage.ground = coverage_ground_.mean();
@@ -220,6 +261,7 @@ Summary RunMetrics::summary() const {
   s.faces.used = cost_sums_.faces_used;
   s.faces.refused = cost_sums_.faces_refused;
   s.captures_refused = cost_sums_.captures_refused;
+  s.bake = bake_;
   s.probes.max_live = max_live_;
   s.probes.mean_live = live_mean_.mean();
   s.memory.max_bytes = max_bytes_;
@@ -240,14 +282,24 @@ nlohmann::ordered_json RunMetrics::to_json(const Summary& s) {
   j["frames"] = s.frames;
   j["duration_s"] = number_or_null(s.duration_s);
   j["receiver_minutes"] = number_or_null(s.receiver_minutes);
+  j["viewed_receiver_minutes"] = number_or_null(s.viewed_receiver_minutes);
   j["receiver_frames"] = s.receiver_frames;
   j["samples"] = s.samples;
-  j["error"]["de2000"] = err(s.de2000);
-  j["error"]["rel"] = err(s.rel);
-  j["pops"]["per_min"] = number_or_null(s.pops.per_min);
-  j["pops"]["max"] = number_or_null(s.pops.max);
-  j["pops"]["sum"] = number_or_null(s.pops.sum);
-  j["pops"]["count"] = s.pops.count;
+  j["error"]["viewed"]["de2000"] = err(s.de2000_viewed);
+  j["error"]["uniform"]["de2000"] = err(s.de2000);
+  j["error"]["uniform"]["rel"] = err(s.rel);
+  j["pops"]["viewed"]["per_min"] = number_or_null(s.pops_viewed.per_min);
+  j["pops"]["viewed"]["max"] = number_or_null(s.pops_viewed.max);
+  j["pops"]["viewed"]["sum"] = number_or_null(s.pops_viewed.sum);
+  j["pops"]["viewed"]["count"] = s.pops_viewed.count;
+  j["pops"]["uniform"]["per_min"] = number_or_null(s.pops.per_min);
+  j["pops"]["uniform"]["max"] = number_or_null(s.pops.max);
+  j["pops"]["uniform"]["sum"] = number_or_null(s.pops.sum);
+  j["pops"]["uniform"]["count"] = s.pops.count;
+  j["response"]["events"] = s.response.events;
+  j["response"]["censored"] = s.response.censored;
+  j["response"]["median_s"] = number_or_null(s.response.median_s);
+  j["response"]["p95_s"] = number_or_null(s.response.p95_s);
   j["coverage"]["mean"] = number_or_null(s.coverage.mean);
   j["coverage"]["receivers"] = number_or_null(s.coverage.receivers);
   j["coverage"]["ground"] = number_or_null(s.coverage.ground);
@@ -259,6 +311,8 @@ nlohmann::ordered_json RunMetrics::to_json(const Summary& s) {
   j["faces"]["used"] = s.faces.used;
   j["faces"]["refused"] = s.faces.refused;
   j["captures"]["refused"] = s.captures_refused;
+  j["bake"]["captures"] = s.bake.captures;
+  j["bake"]["faces"] = s.bake.faces;
   j["probes"]["max_live"] = s.probes.max_live;
   j["probes"]["mean_live"] = number_or_null(s.probes.mean_live);
   j["memory"]["max_bytes"] = s.memory.max_bytes;
@@ -282,17 +336,31 @@ std::string format_number(std::int64_t x) {
 }
 
 std::string frame_csv_header() {
-  return "frame,time,dt,receivers,accuracy,de2000_mean,de2000_max,rel_mean,pops,change_max,"
-         "demand_points,coverage,staleness_mean,live_probes,bytes,faces_granted,faces_used";
+  return "frame,time,dt,receivers,accuracy,de2000_mean,de2000_max,rel_mean,de2000_viewed_mean,"
+         "pops,viewed_pops,change_max,view_weight,demand_points,coverage,staleness_mean,"
+         "live_probes,bytes,faces_granted,faces_used";
 }
 
 std::string frame_csv_row(const FrameRow& r) {
-  return join({format_number(r.frame), format_number(r.time), format_number(r.dt),
-               format_number(r.receivers), r.accuracy_evaluated ? "1" : "0",
-               format_number(r.de2000_mean), format_number(r.de2000_max), format_number(r.rel_mean),
-               format_number(r.pops), format_number(r.change_max), format_number(r.demand_points),
-               format_number(r.coverage), format_number(r.staleness_mean),
-               format_number(r.live_probes), format_number(r.bytes), format_number(r.faces_granted),
+  return join({format_number(r.frame),
+               format_number(r.time),
+               format_number(r.dt),
+               format_number(r.receivers),
+               r.accuracy_evaluated ? "1" : "0",
+               format_number(r.de2000_mean),
+               format_number(r.de2000_max),
+               format_number(r.rel_mean),
+               format_number(r.de2000_viewed_mean),
+               format_number(r.pops),
+               format_number(r.viewed_pops),
+               format_number(r.change_max),
+               format_number(r.view_weight),
+               format_number(r.demand_points),
+               format_number(r.coverage),
+               format_number(r.staleness_mean),
+               format_number(r.live_probes),
+               format_number(r.bytes),
+               format_number(r.faces_granted),
                format_number(r.faces_used)});
 }
 

@@ -25,8 +25,11 @@ nlohmann::ordered_json series_json(const RunResult& r) {
   column("de2000_mean", [](const FrameRow& f) { return f.de2000_mean; });
   column("de2000_max", [](const FrameRow& f) { return f.de2000_max; });
   column("rel_mean", [](const FrameRow& f) { return f.rel_mean; });
+  column("de2000_viewed_mean", [](const FrameRow& f) { return f.de2000_viewed_mean; });
   column("pops", [](const FrameRow& f) { return f.pops; });
+  column("viewed_pops", [](const FrameRow& f) { return f.viewed_pops; });
   column("change_max", [](const FrameRow& f) { return f.change_max; });
+  column("view_weight", [](const FrameRow& f) { return f.view_weight; });
   column("coverage", [](const FrameRow& f) { return f.coverage; });
   column("staleness_mean", [](const FrameRow& f) { return f.staleness_mean; });
   column("live_probes", [](const FrameRow& f) { return f.live_probes; });

@@ -13,14 +13,17 @@
 
 namespace ambisim {
 
-inline constexpr int kResultFormatVersion = 1;
+// 2: summary keys error.{viewed,uniform}.*, pops.{viewed,uniform}.*, response.*; series and
+// frames.csv gain de2000_viewed_mean, viewed_pops and view_weight.
+inline constexpr int kResultFormatVersion = 2;
 // The results' model: bump it whenever the same inputs give different results (the reference,
 // a metric, a planner's behaviour), so that `sweep --resume` recomputes runs instead of mixing
 // old and new numbers. 2: the reference stops refining where interpolation predicts well.
 // 3: planners without data answer the default ambient instead of black.
 // 4: the ambisim planner's spacing and fades (forest_edge/flyover files changed themselves).
 // 5: ambisim ranks objects by need alone and stores fp16 by default.
-inline constexpr int kResultsModelVersion = 5;
+// 6: pops count only what the truth does not explain; viewed metrics; response time.
+inline constexpr int kResultsModelVersion = 6;
 
 struct RunIdentity {
   std::string planner;

@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "sim/metrics/coverage.h"
+#include "sim/metrics/view_weights.h"
 #include "sim/render/capture.h"
 #include "sim/scenario/capture_budget.h"
 #include "sim/scenario/scenario_motion.h"
@@ -32,6 +33,15 @@ struct InFlight {
 
 }  // namespace
 
+ReceiverViewing receiver_viewing(const CameraView& view, const Receiver& r) {
+  ReceiverViewing v;
+  v.weight = view.screen_weight(r.position, 0.5 * r.size_m);
+  const glm::dvec3 d = view.position() - r.position;
+  const double len = glm::length(d);
+  if (len > 0.0) v.to_camera = d / len;
+  return v;
+}
+
 nlohmann::ordered_json RunTiming::to_json() const {
   nlohmann::ordered_json j;
   j["note"] = "measured wall-clock time; not deterministic, not part of the results";
@@ -39,6 +49,7 @@ nlohmann::ordered_json RunTiming::to_json() const {
   j["planner_us_per_frame"] = frames > 0 ? 1e6 * planner_s / static_cast<double>(frames) : 0.0;
   j["lookup_ns"] = lookups > 0 ? 1e9 * lookup_s / static_cast<double>(lookups) : 0.0;
   j["capture_s"] = capture_s;
+  j["bake_s"] = bake_s;
   j["frames"] = frames;
   j["lookups"] = lookups;
   return j;
@@ -79,6 +90,7 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
 
   std::vector<InFlight> in_flight;
   std::vector<FinishedProbe> finished;
+  BakeCosts bake;
   std::vector<Planner::ReceiverView> views;
   std::vector<Rgb> planner_e(nn);
   std::vector<LookupResult> receiver_lookups, demand_lookups;
@@ -137,7 +149,7 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
         throw std::logic_error("reference track does not match the scenario's receivers");
       }
     }
-    metrics.begin_frame(mf.frame.index, mf.frame.time, mf.frame.dt);
+    metrics.begin_frame(mf.frame.index, mf.frame.time, mf.frame.dt, mf.camera.cut);
     budget.begin_frame(mf.frame.time);
 
     FrameCosts costs;
@@ -158,6 +170,27 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
     ctx.startable_captures =
         unlimited ? 1 << 20
                   : static_cast<int>(std::max<std::int64_t>(0, budget.available() - owed));
+
+    // 0. before the first frame: the planner's load-time captures, outside the budget.
+    if (frame_index == 0) {
+      const auto tb = Clock::now();
+      for (const auto& req : planner.preload(ctx)) {
+        InFlight c{req, 0.0, 0, CubeMap(face_size), nullptr};
+        for (int f = 0; f < kCubeFaces; ++f) {
+          capture_face(world, c.request.position, static_cast<CubeFace>(f), c.cube);
+        }
+        c.faces_done = kCubeFaces;
+        FinishedProbe p;
+        p.tag = req.tag;
+        p.position = req.position;
+        p.sh = projector_for(c.cube.size).project(c.cube);
+        planner.deliver(p);
+        ++bake.captures;
+        bake.faces += kCubeFaces;
+      }
+      result.timing.bake_s += seconds_since(tb);
+      metrics.bake(bake);
+    }
 
     // 2. plan and start captures.
     auto t0 = Clock::now();
@@ -233,6 +266,7 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
     for (const auto& d : demand) demand_lookups.push_back(planner.lookup(d.position));
     result.timing.lookup_s += seconds_since(tl);
     result.timing.lookups += static_cast<std::int64_t>(receiver_count + demand.size());
+    const CameraView view(motion.view(), mf.camera.position, mf.look);
     for (std::size_t k = 0; k < receiver_count; ++k) {
       const Receiver& r = motion.receivers()[k];
       const LookupResult& lr = receiver_lookups[k];
@@ -241,7 +275,8 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
           planner_e[m] = sh_irradiance(lr.sh, settings.normals[m]);
         }
         metrics.receiver(r.id, planner_e,
-                         std::span<const Rgb>(reference->values(span.begin + k), nn), lr);
+                         std::span<const Rgb>(reference->values(span.begin + k), nn), lr,
+                         receiver_viewing(view, r));
       }
       metrics.demand_point(lr, glm::length(r.position - mf.camera.position), DemandKind::receiver);
     }

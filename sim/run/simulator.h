@@ -3,6 +3,8 @@
 // receivers through a planner and scores the result (SPEC section 3).
 //
 // Per frame, in this order:
+//   0. before the first frame only: the planner's preload captures are rendered and delivered
+//      outside the budget (a bake; counted as bake.* in the summary);
 //   1. the motion advances (camera, receivers);
 //   2. the planner sees the receivers and plans; the simulator starts at most
 //      `startable_captures` requests (the budget's free faces after those owed to captures in
@@ -22,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sim/metrics/metrics.h"
+#include "sim/metrics/view_weights.h"
 #include "sim/planner.h"
 #include "sim/run/reference_track.h"
 #include "sim/scenario/scenario.h"
@@ -37,6 +40,7 @@ struct RunTiming {
   double lookup_s = 0.0;
   std::int64_t lookups = 0;
   double capture_s = 0.0;  // face rendering and projection
+  double bake_s = 0.0;     // the planner's preload captures, before the first frame
   std::int64_t frames = 0;
   nlohmann::ordered_json to_json() const;
 };
@@ -74,6 +78,10 @@ struct SimulationOptions {
   bool keep_frames = true;        // keep the per-frame series
   double snapshot_every_s = 1.0;  // record a Snapshot this often (0: never)
 };
+
+// How the player's view sees receiver r: its screen weight (a sphere of r.size_m) and the
+// direction to the camera (view_weights.h).
+ReceiverViewing receiver_viewing(const CameraView& view, const Receiver& r);
 
 RunResult simulate(const Scenario& scenario, const World& world, const ReferenceTrack& reference,
                    Planner& planner, const SimulationOptions& options = {});

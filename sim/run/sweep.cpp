@@ -205,6 +205,25 @@ SweepSpec parse_sweep(const nlohmann::json& doc, const std::string& path) {
 
 SweepSpec load_sweep(const std::string& path) { return parse_sweep(load_json_file(path), path); }
 
+void apply_seed(nlohmann::json& doc, std::uint64_t seed, const std::string& file) {
+  const auto read = [&](const char* section) -> std::uint64_t {
+    if (!doc.contains(section) || !doc[section].is_object()) return 1;
+    const auto& sec = doc[section];
+    if (!sec.contains("seed") || !sec["seed"].is_number_integer() ||
+        sec["seed"].get<double>() < 0) {
+      return 1;  // absent: the parser's default (an invalid one is reported by the parser)
+    }
+    return sec["seed"].get<std::uint64_t>();
+  };
+  const std::uint64_t world = read("world");
+  const std::uint64_t receivers = read("receivers");
+  set_json_path(doc, "/world/seed", seed, file);
+  // 53 bits: the seed stays an exact JSON number.
+  const std::uint64_t derived =
+      seed == world ? receivers : splitmix64(hash_combine(receivers, seed)) >> 11;
+  set_json_path(doc, "/receivers/seed", derived, file);
+}
+
 std::vector<RunSpec> expand_sweep(const SweepSpec& spec) {
   std::vector<RunSpec> runs;
   const std::vector<double> fps = spec.fps.empty() ? std::vector<double>{0.0} : spec.fps;
@@ -225,7 +244,7 @@ std::vector<RunSpec> expand_sweep(const SweepSpec& spec) {
               doc["frames"].erase("segments");
             set_json_path(doc, "/frames/fps", f, file);
           }
-          if (seed != 0) set_json_path(doc, "/receivers/seed", seed, file);
+          if (seed != 0) apply_seed(doc, seed, file);
           scale_camera_speed(doc, v);
           for (double b : spec.budgets) {
             set_json_path(doc, "/budget/faces_per_frame", b, file);

@@ -34,7 +34,7 @@ struct SweepSpec {
   std::vector<double> budgets{1.0};       // faces per frame
   std::vector<double> speed_scales{1.0};  // multiplies the camera's speeds
   std::vector<double> fps;                // empty: each scenario's own frame-rate schedule
-  std::vector<std::uint64_t> seeds;       // receiver seeds; empty: the scenario's own
+  std::vector<std::uint64_t> seeds;       // world seeds (apply_seed); empty: the scenario's own
   std::optional<double> duration_s;       // overrides every scenario's duration
   nlohmann::json overrides = nlohmann::json::object();  // JSON pointer -> value, for every run
 };
@@ -59,6 +59,12 @@ struct RunSpec {
 };
 
 std::vector<RunSpec> expand_sweep(const SweepSpec& spec);
+
+// One seed of a sweep's `seeds`: the world is generated from `seed`, and the receivers from a
+// seed derived from the scenario's own receiver seed and `seed` (hash-mixed), except that the
+// scenario's own world seed keeps its receiver seed too: that seed runs the scenario as written.
+// Scenario positions that name landmarks (landmark_ref.h) follow the world.
+void apply_seed(nlohmann::json& doc, std::uint64_t seed, const std::string& file);
 
 // Builds a planner by name from a JSON params object (the policies registry; injected so that
 // sim/ does not depend on policies/).

@@ -19,6 +19,10 @@
 //                    | "jump_ahead_m"}], strictly increasing times                      [none]
 //   periodic_cut    {"every_s" 0.01..86400, "first_s" > 0 [every_s], and one of "jump_ahead_m" |
 //                    "targets_m": [course coordinates, cycled]}; not together with cuts [none]
+//   view            the player's view (view_weights.h): {"fov_deg" (0, 180) horizontal [70],
+//                    "aspect" 0.1..10 [16/9], "look_at" a position [none: along the heading]}
+// Every position ([x, y, z]: keyframe points, to_position, look_at) may name a landmark
+// instead: {"landmark": NAME, "offset": [along, left, up]} (landmark_ref.h).
 // Course coordinates (to_arc_length_m, targets_m) are metres along the course from where the
 // path starts; they are clamped to the course.
 #include "sim/scenario/camera_path.h"
@@ -45,38 +49,29 @@ constexpr double kMaxHeight = 1e5;  // m above the road
 constexpr double kSamePoint = 1e-9;       // m
 constexpr double kMinCutInterval = 0.01;  // s, periodic cuts
 
-std::vector<glm::dvec3> parse_points(ObjectReader& r, const char* key) {
+bool distinct_points(const std::vector<glm::dvec3>& points) {
+  return std::any_of(points.begin(), points.end(), [&](const glm::dvec3& q) {
+    return glm::length(q - points.front()) > kSamePoint;
+  });
+}
+
+std::vector<glm::dvec3> parse_points(ObjectReader& r, const char* key,
+                                     std::vector<LandmarkRef>& refs) {
   const nlohmann::json* v = r.raw(key);
   if (!v) r.fail(key, "required array of [x, y, z] points is missing");
   if (!v->is_array() || v->size() < 2) r.fail(key, "must be an array of at least 2 [x, y, z]");
   std::vector<glm::dvec3> out;
   for (std::size_t i = 0; i < v->size(); ++i) {
-    const auto& p = (*v)[i];
     const std::string path = r.path_of(key) + "/" + std::to_string(i);
-    if (!p.is_array() || p.size() != 3) {
-      throw InputError(r.file(), path, "must be an array of 3 numbers");
-    }
-    glm::dvec3 q;
-    for (int c = 0; c < 3; ++c) {
-      if (!p[c].is_number() || !std::isfinite(p[c].get<double>())) {
-        throw InputError(r.file(), path + "/" + std::to_string(c), "must be a finite number");
-      }
-      q[c] = p[c].get<double>();
-      if (std::abs(q[c]) > kMaxCoord) {
-        throw InputError(r.file(), path + "/" + std::to_string(c),
-                         "must be in [-1e10, 1e10] m, got " + p[c].dump());
-      }
-    }
-    out.push_back(q);
+    out.push_back(read_position((*v)[i], r.file(), path, kMaxCoord, refs, i));
   }
-  const bool distinct = std::any_of(out.begin(), out.end(), [&](const glm::dvec3& q) {
-    return glm::length(q - out.front()) > kSamePoint;
-  });
-  if (!distinct) r.fail(key, "needs at least 2 distinct points");
+  // With landmarks the points are known only once the world is: checked in
+  // resolve_camera_landmarks.
+  if (refs.empty() && !distinct_points(out)) r.fail(key, "needs at least 2 distinct points");
   return out;
 }
 
-CutRecord parse_cut(ObjectReader& e) {
+CutRecord parse_cut(ObjectReader& e, std::vector<LandmarkRef>& refs, std::size_t index) {
   CutRecord c;
   c.time_s = e.number("time_s", Range::positive());
   const int kinds =
@@ -88,7 +83,7 @@ CutRecord parse_cut(ObjectReader& e) {
     c.metres = e.number("to_arc_length_m", kDistance);
   } else if (e.has("to_position")) {
     c.kind = CutRecord::Kind::to_position;
-    c.position = e.vec3("to_position", kCoord);
+    c.position = read_position(e, "to_position", kMaxCoord, refs, index);
   } else {
     c.kind = CutRecord::Kind::jump_ahead;
     c.metres = e.number("jump_ahead_m", kCoord);
@@ -122,9 +117,10 @@ CameraPathRecord parse_camera_path(ObjectReader& r) {
   const std::string type = r.choice("type", "keyframes", {"keyframes", "road"});
   if (type == "keyframes") {
     rec.type = CameraPathRecord::Type::keyframes;
-    rec.points = parse_points(r, "points");
+    rec.points = parse_points(r, "points", rec.point_landmarks);
     rec.z_above_ground =
         r.choice("z_mode", "absolute", {"absolute", "above_ground"}) == "above_ground";
+    for (auto& ref : rec.point_landmarks) ref.z_is_height = rec.z_above_ground;
   } else {
     rec.type = CameraPathRecord::Type::road;
     if (r.has("lane_offset_m"))
@@ -143,7 +139,7 @@ CameraPathRecord parse_camera_path(ObjectReader& r) {
   }
   if (r.has("cuts")) {
     for (auto& e : r.objects("cuts")) {
-      CutRecord c = parse_cut(e);
+      CutRecord c = parse_cut(e, rec.cut_landmarks, rec.cuts.size());
       if (!rec.cuts.empty() && !(c.time_s > rec.cuts.back().time_s)) {
         e.fail("time_s", "must be greater than the previous cut's");
       }
@@ -151,8 +147,34 @@ CameraPathRecord parse_camera_path(ObjectReader& r) {
     }
   }
   if (auto p = r.optional_object("periodic_cut")) rec.periodic = parse_periodic(*p);
+  if (auto v = r.optional_object("view")) {
+    rec.view.fov_deg = v->number("fov_deg", rec.view.fov_deg, {0.0, 180.0, true, true});
+    rec.view.aspect = v->number("aspect", rec.view.aspect, Range::closed(0.1, 10.0));
+    if (v->has("look_at")) {
+      rec.look_at = read_position(*v, "look_at", kMaxCoord, rec.look_at_landmark, 0);
+    }
+    v->finish();
+  }
   r.finish();
   return rec;
+}
+
+void resolve_camera_landmarks(CameraPathRecord& record, const WorldLandmarks& landmarks,
+                              const std::string& file) {
+  resolve_landmarks(record.point_landmarks, landmarks, file, record.points);
+  for (const auto& ref : record.cut_landmarks) {
+    record.cuts.at(ref.index).position = resolve_landmark(ref, landmarks, file);
+  }
+  for (const auto& ref : record.look_at_landmark) {
+    record.look_at = resolve_landmark(ref, landmarks, file);
+  }
+  if (!record.point_landmarks.empty() && !distinct_points(record.points)) {
+    throw InputError(file, record.point_landmarks.front().path,
+                     "the points need at least 2 distinct positions in this world");
+  }
+  record.point_landmarks.clear();
+  record.cut_landmarks.clear();
+  record.look_at_landmark.clear();
 }
 
 CameraPath::CameraPath(const CameraPathRecord& record, const TerrainQueries& terrain)

@@ -8,6 +8,8 @@
 #include <glm/vec3.hpp>
 
 #include "sim/base/json_reader.h"
+#include "sim/metrics/view_weights.h"
+#include "sim/scenario/landmark_ref.h"
 #include "sim/scenario/speed_profile.h"
 #include "sim/world/spline.h"
 #include "sim/world/terrain_queries.h"
@@ -53,7 +55,19 @@ struct CameraPathRecord {
   AtEnd at_end = AtEnd::hold;
   std::vector<CutRecord> cuts;  // sorted by time, strictly increasing
   PeriodicCutRecord periodic;
+  // The player's view: the lens, and where it looks (along the camera's heading unless
+  // look_at is given).
+  ViewSpec view;
+  std::optional<glm::dvec3> look_at;
+  // Positions given as landmarks (landmark_ref.h), filled in by resolve_camera_landmarks:
+  // indices into points, into cuts (to_position), and look_at (index 0).
+  std::vector<LandmarkRef> point_landmarks, cut_landmarks, look_at_landmark;
 };
+
+// Fills the landmark positions of `record` from the world's landmarks; throws InputError(file,
+// path) for a landmark this world lacks.
+void resolve_camera_landmarks(CameraPathRecord& record, const WorldLandmarks& landmarks,
+                              const std::string& file);
 
 // Reads a "camera" object (schema in the file comment of camera_path.cpp); calls finish().
 CameraPathRecord parse_camera_path(ObjectReader& r);

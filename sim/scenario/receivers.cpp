@@ -8,12 +8,13 @@
 //                    "band_near_m" >= 0 [20], "band_far_m" >= near [150],
 //                    "band_half_width_m" >= 0 [40], "min_height_m" >= 0 [0.5],
 //                    "max_height_m" >= min [2], "lifetime_s" > 0 [30],
-//                    "behind_margin_m" >= 0 [10], "max_live" 0..10000 [1000]}
+//                    "behind_margin_m" >= 0 [10], "max_live" 0..10000 [1000]}; a prop's
+//                    size (diameter seen) is its height above the ground
 //   traffic         absent = none; needs the world's road; {"rate_per_s" 0..1e4 [10],
 //                    "speed_mps" 0..1000 [30], "speed_spread" 0..0.9 [0],
 //                    "window_behind_m" >= 0 [200], "window_ahead_m" >= 0 [800],
 //                    "lane_offset_m" [road_width / 4], "height_m" >= 0 [1],
-//                    "max_live" 0..10000 [500]}
+//                    "max_live" 0..10000 [500], "size_m" (0, 1e3] [2]}
 #include "sim/scenario/receivers.h"
 
 #include <algorithm>
@@ -32,7 +33,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // Every live receiver gets a reference capture on every frame: beyond this many a run would
 // never finish (and its reference would not fit in memory).
 constexpr int kMaxLive = 10000;
-constexpr double kMaxOffset = 1e4;  // m: camera object placement
+constexpr double kMaxOffset = 1e4;         // m: camera object placement
+const Range kSize{0.0, 1e3, true, false};  // m: a receiver's diameter
 // Spawn counts are floor(active seconds x rate); this absorbs float error in the product so
 // that 10 s at 50/s is 500, not 499.
 constexpr double kCountSnap = 1e-9;
@@ -73,11 +75,12 @@ ReceiversRecord parse_receivers(ObjectReader& r) {
         camera ? CameraObjectRecord::Follow::camera : CameraObjectRecord::Follow::ground;
     rec.camera_object.height_m =
         c->number("height_m", 1.0, Range::closed(camera ? -kMaxOffset : 0.0, kMaxOffset));
+    rec.camera_object.size_m = c->number("size_m", rec.camera_object.size_m, kSize);
     c->finish();
   }
   if (auto p = r.optional_object("lod_props")) {
     LodPropsRecord l;
-    l.trigger = p->vec3("trigger", Range::closed(-1e10, 1e10));
+    l.trigger = read_position(*p, "trigger", 1e10, l.trigger_landmark, 0);
     l.lod_distance_m = p->number("lod_distance_m", l.lod_distance_m, Range::positive());
     l.rate_per_s = p->number("rate_per_s", l.rate_per_s, Range::closed(0.0, 1e4));
     l.band_near_m = p->number("band_near_m", l.band_near_m, Range::non_negative());
@@ -106,11 +109,21 @@ ReceiversRecord parse_receivers(ObjectReader& r) {
     }
     tr.height_m = t->number("height_m", tr.height_m, Range::non_negative());
     tr.max_live = t->integer("max_live", tr.max_live, Range::closed(0, kMaxLive));
+    tr.size_m = t->number("size_m", tr.size_m, kSize);
     t->finish();
     rec.traffic = tr;
   }
   r.finish();
   return rec;
+}
+
+void resolve_receiver_landmarks(ReceiversRecord& record, const WorldLandmarks& landmarks,
+                                const std::string& file) {
+  if (!record.lod_props) return;
+  for (const auto& ref : record.lod_props->trigger_landmark) {
+    record.lod_props->trigger = resolve_landmark(ref, landmarks, file);
+  }
+  record.lod_props->trigger_landmark.clear();
 }
 
 ReceiverSet::ReceiverSet(const ReceiversRecord& record, const TerrainQueries& terrain)
@@ -181,9 +194,11 @@ void ReceiverSet::update_camera_object(double time, const CameraState& camera) {
     const double lowest = ground + CameraObjectRecord::kMinClearance;
     r.position = {p.x, p.y, std::max(flying, lowest)};
     r.velocity = {vh.x, vh.y, flying >= lowest ? camera.velocity.z : 0.0};
+    r.size_m = rec_.camera_object.size_m;
     return;
   }
   r.position = {p.x, p.y, ground + rec_.camera_object.height_m};
+  r.size_m = rec_.camera_object.size_m;
   // Vertical speed follows the ground slope along the heading (central difference, +-0.5 m).
   const glm::dvec3 a = p - 0.5 * heading_;
   const glm::dvec3 b = p + 0.5 * heading_;
@@ -231,6 +246,7 @@ void ReceiverSet::update_lod_props(double time, const CameraState& camera) {
     Receiver& r = spawn(ReceiverKind::lod_prop, time);
     r.position = {p.x, p.y, stand_height(p.x, p.y) + h};
     r.velocity = glm::dvec3(0.0);
+    r.size_m = h;
     r.despawn_time = time + L.lifetime_s;
     ++live_props;
   }
@@ -286,6 +302,7 @@ void ReceiverSet::update_traffic(double time, const CameraState& camera) {
     r.lane_direction = uniform(kTrafficStream, n, 1) < 0.5 ? 1 : -1;
     r.road_speed =
         T.speed_mps * (1.0 + T.speed_spread * (2.0 * uniform(kTrafficStream, n, 2) - 1.0));
+    r.size_m = T.size_m;
     place(r);
     ++live_cars;
   }

@@ -7,12 +7,14 @@
 // same frame times give the same receivers, independent of anything else.
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "sim/base/json_reader.h"
 #include "sim/scenario/camera_path.h"
+#include "sim/scenario/landmark_ref.h"
 #include "sim/world/terrain_queries.h"
 
 namespace ambisim {
@@ -27,6 +29,7 @@ struct Receiver {
   double despawn_time = 0.0;  // s: scheduled end while live (+inf if none); actual once gone
   glm::dvec3 position{0.0};   // at the last update
   glm::dvec3 velocity{0.0};   // m/s, at the last update
+  double size_m = 2.0;        // diameter of the sphere a player sees (the viewed metrics)
   // Traffic motion: road arc length at spawn and lane direction (+1 / -1 along the road).
   double road_s0 = 0.0;
   int lane_direction = 0;
@@ -42,12 +45,14 @@ struct CameraObjectRecord {
   double ahead_m = 8.0;   // along the camera's horizontal heading
   double height_m = 1.0;  // above the ground (follow ground) or the camera (follow camera)
   Follow follow = Follow::ground;
+  double size_m = 2.0;                          // as seen by the player (a car, an aircraft)
   static constexpr double kMinClearance = 0.5;  // metres above the surface, follow camera
 };
 
 struct LodPropsRecord {
-  glm::dvec3 trigger{0.0};        // the forest edge (only x, y are used)
-  double lod_distance_m = 200.0;  // horizontal camera distance that switches LOD
+  glm::dvec3 trigger{0.0};                    // the forest edge (only x, y are used)
+  std::vector<LandmarkRef> trigger_landmark;  // the trigger given as a landmark (at most one)
+  double lod_distance_m = 200.0;              // horizontal camera distance that switches LOD
   double rate_per_s = 50.0;
   double band_near_m = 20.0;  // band ahead of the camera where props appear
   double band_far_m = 150.0;
@@ -71,6 +76,7 @@ struct TrafficRecord {
   std::optional<double> lane_offset_m;  // right of the lane's direction [road_width / 4]
   double height_m = 1.0;                // above the road surface
   int max_live = 500;
+  double size_m = 2.0;  // as seen by the player (a car)
 };
 
 struct ReceiversRecord {
@@ -82,6 +88,10 @@ struct ReceiversRecord {
 
 // Reads a "receivers" object (schema in receivers.cpp); calls finish().
 ReceiversRecord parse_receivers(ObjectReader& r);
+
+// Fills a landmark trigger from the world's landmarks (landmark_ref.h); throws InputError.
+void resolve_receiver_landmarks(ReceiversRecord& record, const WorldLandmarks& landmarks,
+                                const std::string& file);
 
 struct ReceiverCounters {
   std::int64_t spawned[3] = {0, 0, 0};  // by ReceiverKind

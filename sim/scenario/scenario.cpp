@@ -100,7 +100,25 @@ Scenario parse_scenario(const nlohmann::json& document, const std::string& file)
   return s;
 }
 
+CameraPathRecord resolved_camera(const Scenario& s, const World& world) {
+  CameraPathRecord c = s.camera;
+  if (!c.point_landmarks.empty() || !c.cut_landmarks.empty() || !c.look_at_landmark.empty()) {
+    resolve_camera_landmarks(c, world.landmarks(), s.file);
+  }
+  return c;
+}
+
+ReceiversRecord resolved_receivers(const Scenario& s, const World& world) {
+  ReceiversRecord r = s.receivers;
+  if (r.lod_props && !r.lod_props->trigger_landmark.empty()) {
+    resolve_receiver_landmarks(r, world.landmarks(), s.file);
+  }
+  return r;
+}
+
 void check_scenario_world(const Scenario& s, const World& world) {
+  resolved_camera(s, world);
+  resolved_receivers(s, world);
   if (s.camera.type == CameraPathRecord::Type::road &&
       s.camera.start_arc_length_m > world.road().length()) {
     char text[96];

@@ -53,9 +53,14 @@ Scenario parse_scenario(const nlohmann::json& document, const std::string& file)
 Scenario load_scenario(const std::string& path);
 
 class World;
-// The checks that need the built world (the road's length); throws InputError naming the
-// scenario file and the JSON path. Call before simulating.
+// The checks that need the built world (the road's length, every landmark named); throws
+// InputError naming the scenario file and the JSON path. Call before simulating.
 void check_scenario_world(const Scenario& s, const World& world);
+
+// The camera and receiver records with their landmark positions filled in from `world`
+// (landmark_ref.h); throws InputError for a landmark the world lacks.
+CameraPathRecord resolved_camera(const Scenario& s, const World& world);
+ReceiversRecord resolved_receivers(const Scenario& s, const World& world);
 
 // Sets a value inside a document at a JSON pointer ("/camera/speed_mps"), creating objects on
 // the way; used by sweeps to vary one parameter. Throws InputError naming `file` if the path

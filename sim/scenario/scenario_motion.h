@@ -2,6 +2,8 @@
 // Everything in a scenario that moves independently of the planner: the frame clock, the
 // camera and the receivers. The reference pass and every planner's run step the same motion,
 // so they see identical frames, camera states and receivers by construction.
+#include <optional>
+
 #include "sim/scenario/camera_path.h"
 #include "sim/scenario/frame_schedule.h"
 #include "sim/scenario/receivers.h"
@@ -15,6 +17,9 @@ class World;
 struct MotionFrame {
   Frame frame;
   CameraState camera;
+  // Where the player's view looks (unit): at the scenario's look_at, else along the camera's
+  // velocity, else where it looked last (+x before the camera ever moved).
+  glm::dvec3 look{1.0, 0.0, 0.0};
 };
 
 class ScenarioMotion {
@@ -29,6 +34,7 @@ class ScenarioMotion {
   const std::vector<Receiver>& receivers() const { return receivers_.live(); }
   std::int64_t frame_count() const { return schedule_.frame_count(); }
   const FrameSchedule& schedule() const { return schedule_; }
+  const ViewSpec& view() const { return view_; }
 
  private:
   TerrainQueries terrain_;
@@ -38,6 +44,8 @@ class ScenarioMotion {
   ReceiverSet receivers_;
   MotionFrame current_;
   double previous_time_ = 0.0;
+  ViewSpec view_;
+  std::optional<glm::dvec3> look_at_;
 };
 
 }  // namespace ambisim

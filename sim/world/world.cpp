@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 
 #include <glm/geometric.hpp>
 
 #include "sim/base/hash.h"
+#include "sim/world/landmarks.h"
 #include "sim/world/terrain_noise.h"
 
 namespace ambisim {
@@ -157,6 +159,7 @@ double upper_quantile(const std::vector<float>& values, double f) {
 }  // namespace
 
 void World::allocate(const WorldParams& params) {
+  landmarks_ = std::make_shared<LandmarkCache>();
   params_ = params;
   lighting_ = Lighting(params.sun, params.sky, params.fog);
   cell_ = params.cell_m;
@@ -491,6 +494,17 @@ std::uint64_t World::content_hash() const {
     h.add_bytes(l, sizeof(l));
   }
   return h.value();
+}
+
+struct World::LandmarkCache {
+  std::once_flag once;
+  WorldLandmarks landmarks;
+};
+
+const WorldLandmarks& World::landmarks() const {
+  // The cache is created with the world (allocate()); a moved-from world has none.
+  std::call_once(landmarks_->once, [this] { landmarks_->landmarks = find_landmarks(*this); });
+  return landmarks_->landmarks;
 }
 
 }  // namespace ambisim

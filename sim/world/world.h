@@ -11,6 +11,7 @@
 // (ground + canopy). Beyond the grid the world is an infinite flat "far ground" plane at the
 // lowest surface height, neutral grey, unshadowed; above it only sky.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -27,6 +28,8 @@ namespace ambisim {
 
 // Faces of a column through which a ray enters it (the "hit surface" is (cell, face)).
 enum class ColumnFace : std::uint8_t { Top = 0, WallNegX, WallPosX, WallNegY, WallPosY, Inside };
+
+struct WorldLandmarks;
 
 class World {
  public:
@@ -64,6 +67,9 @@ class World {
 
   // The motorway centre line at road-surface height (world frame; empty if the road is off).
   const Spline3& road() const { return road_; }
+  // The world's named places (landmarks.h), found on first use and kept (thread-safe): the
+  // scans take a fraction of a second, and every run of a sweep asks.
+  const WorldLandmarks& landmarks() const;
   double road_width_m() const { return params_.road.width_m; }
 
   double far_ground_height() const { return min_surface_; }
@@ -114,6 +120,8 @@ class World {
   float far_albedo_ = kFarGroundAlbedo;
   Rgb far_radiance_{0.0f};
   Spline3 road_;
+  struct LandmarkCache;
+  std::shared_ptr<LandmarkCache> landmarks_;  // shared_ptr: World stays movable
 };
 
 }  // namespace ambisim

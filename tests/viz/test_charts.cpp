@@ -35,7 +35,8 @@ fs::path make_sweep_dir() {
   std::ofstream s(dir / "summary.csv");
   std::ofstream t(dir / "timing.csv");
   s << "run,scenario,planner,label,params,faces_per_frame,speed_scale,fps,seed,scenario_hash,"
-       "frames,duration_s,error.de2000.mean,error.de2000.p95,pops.per_min,coverage.mean\n";
+       "frames,duration_s,error.viewed.de2000.mean,error.viewed.de2000.p95,pops.viewed.per_min,"
+       "coverage.mean\n";
   t << "# measured wall-clock times\n";
   const char* timing_header = "run,timing.note,timing.total_s,timing.planner_us_per_frame\n";
   bool first = true;

@@ -151,6 +151,19 @@ TEST_CASE("constant captures once at the start and keeps only L00", "[policies]"
   CHECK(p->stats().bytes >= static_cast<std::int64_t>(sizeof(Sh9Rgb)));
 }
 
+TEST_CASE("constant takes its capture at load time, before the first frame", "[policies]") {
+  auto p = make_planner("constant");
+  const glm::dvec3 cam{3.0, 4.0, 5.0};
+  const auto pre = p->preload(frame_at(0, 1.0 / 60, cam));
+  REQUIRE(pre.size() == 1);
+  CHECK(pre[0].position == cam);
+  // Asked for at load time: plan() does not ask again, delivered or not yet.
+  CHECK(p->plan(frame_at(0, 1.0 / 60, cam)).empty());
+  p->deliver(probe_of(pre[0], distinct_sh(2.0f), 0.0, 0.0));
+  CHECK(p->lookup(cam).sh.c[0] == distinct_sh(2.0f).c[0]);
+  CHECK(p->plan(frame_at(1, 1.0 / 60, cam)).empty());
+}
+
 TEST_CASE("hemisphere keeps L00 and L10 only; its default is sky above, ground below",
           "[policies]") {
   auto p = make_planner(

@@ -160,15 +160,20 @@ TEST_CASE("summary JSON: key order, nulls without data", "[metrics]") {
   std::vector<std::string> keys;
   for (const auto& [k, v] : j.items()) keys.push_back(k);
   CHECK(keys == std::vector<std::string>{"frames", "duration_s", "receiver_minutes",
-                                         "receiver_frames", "samples", "error", "pops", "coverage",
-                                         "staleness", "faces", "captures", "probes", "memory"});
-  CHECK(j["error"]["de2000"]["p95"].is_null());
-  CHECK(j["pops"]["per_min"].is_null());
-  CHECK(j["pops"]["count"] == 0);
+                                         "viewed_receiver_minutes", "receiver_frames", "samples",
+                                         "error", "pops", "response", "coverage", "staleness",
+                                         "faces", "captures", "bake", "probes", "memory"});
+  CHECK(j["error"]["viewed"]["de2000"]["p95"].is_null());
+  CHECK(j["error"]["uniform"]["de2000"]["p95"].is_null());
+  CHECK(j["pops"]["viewed"]["per_min"].is_null());
+  CHECK(j["pops"]["uniform"]["per_min"].is_null());
+  CHECK(j["pops"]["uniform"]["count"] == 0);
+  CHECK(j["response"]["events"] == 0);
+  CHECK(j["response"]["median_s"].is_null());
   CHECK(j["frames"] == 1);
   // Embeds in a plain nlohmann::json document.
   const nlohmann::json plain = j;
-  CHECK(plain["error"]["rel"].contains("mean"));
+  CHECK(plain["error"]["uniform"]["rel"].contains("mean"));
 }
 
 TEST_CASE("CSV numbers are fixed and locale-independent", "[metrics]") {
@@ -192,8 +197,10 @@ TEST_CASE("CSV numbers are fixed and locale-independent", "[metrics]") {
   CHECK(line.rfind("3,0.05,0.0166667,0,1,nan,", 0) == 0);
   CHECK(count_cells(line) == count_cells(frame_csv_header()));
   CHECK(count_cells(summary_csv_row(Summary{})) == count_cells(summary_csv_header()));
-  CHECK(summary_csv_header().rfind("frames,duration_s,receiver_minutes,receiver_frames,samples,"
-                                   "error.de2000.mean,error.de2000.p95,",
+  CHECK(summary_csv_header().rfind("frames,duration_s,receiver_minutes,viewed_receiver_minutes,"
+                                   "receiver_frames,samples,error.viewed.de2000.mean,"
+                                   "error.viewed.de2000.p95,error.viewed.de2000.max,"
+                                   "error.uniform.de2000.mean,",
                                    0) == 0);
 }
 
