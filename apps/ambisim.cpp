@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   ambisim::cli::add_run_command(app);
   ambisim::cli::add_planners_command(app);
   ambisim::cli::add_sweep_command(app);
+  ambisim::cli::add_compare_command(app);
   ambisim::cli::add_plot_command(app);
   ambisim::cli::add_viz_command(app);
   ambisim::cli::add_bench_chart_command(app);

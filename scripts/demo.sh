@@ -2,9 +2,12 @@
 # The main job: installs what is missing, builds, then writes to out/demo/ (or $1):
 #   world.png, probe_*.png/json   the default world and a few probes (cube crosses)
 #   sweep/                        the default sweep (both thesis scenarios x every planner x
-#                                 3 budgets x 3 camera speeds): runs/, summary.csv, timing.csv
+#                                 2 budgets x 3 camera speeds x 5 seeds): runs/, summary.csv,
+#                                 timing.csv
+#   sweep/compare.{txt,csv,json}  every planner against shgraph+vp over the seeds (means, 95 %
+#                                 bootstrap intervals, ratios, wins)
 #   sweep/charts/                 accuracy vs cost, error and pops vs speed, coverage vs
-#                                 budget, time series
+#                                 budget, box plots across seeds, time series
 #   sweep/runs/<run>/views/       ParaView files and PNG snapshots of two motorway runs
 # Rerunning resumes the sweep (finished runs are kept) and redraws the pictures.
 set -euo pipefail
@@ -25,10 +28,13 @@ while read -r name at; do
 done <"$SCEN/demo_probes.txt"
 echo "== default sweep (resumable)" >&2
 "$AMBISIM" sweep "$SCEN/sweeps/default.json" --out "$OUT/sweep" --resume
+echo "== compare over seeds" >&2
+"$AMBISIM" compare "$OUT/sweep" --baseline shgraph+vp --csv "$OUT/sweep/compare.csv" \
+  --json "$OUT/sweep/compare.json" --force >"$OUT/sweep/compare.txt"
 echo "== charts" >&2
-run "$AMBISIM" plot "$OUT/sweep" --run motorway__ambisim__b1__v1 --force
+run "$AMBISIM" plot "$OUT/sweep" --run motorway__ambisim__b1__v1__s1 --force
 echo "== views" >&2
-for r in motorway__ambisim__b1__v1 motorway__shgraph+vp__b1__v1 forest_edge__ambisim__b1__v1; do
+for r in motorway__ambisim__b1__v1__s1 motorway__shgraph+vp__b1__v1__s1 forest_edge__ambisim__b1__v1__s1; do
   run "$AMBISIM" viz "$OUT/sweep/runs/$r" --force
 done
 echo "ambisim demo: outputs in $OUT (charts in $OUT/sweep/charts)" >&2

@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <tuple>
 
 #include <vtkAxis.h>
 #include <vtkBrush.h>
@@ -15,6 +16,7 @@
 #include <vtkChartXY.h>
 #include <vtkContextScene.h>
 #include <vtkContextView.h>
+#include <vtkDoubleArray.h>
 #include <vtkFloatArray.h>
 #include <vtkNew.h>
 #include <vtkPen.h>
@@ -22,15 +24,17 @@
 #include <vtkPlotPoints.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
+#include <vtkStringArray.h>
 #include <vtkTable.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
 #include <vtkVector.h>
 #include <nlohmann/json.hpp>
 
+#include "sim/base/csv_table.h"
 #include "sim/base/input_error.h"
 #include "sim/base/json_reader.h"
-#include "viz/csv_table.h"
+#include "sim/base/statistics.h"
 #include "viz/render_capture.h"
 
 namespace fs = std::filesystem;
@@ -57,11 +61,16 @@ std::string fmt(double v) {
 }
 
 // One run of summary.csv with what the charts need.
+// With several seeds per condition, a point is the mean over its seeds (per_seed keeps them).
 struct RunPoint {
-  std::string run, scenario, label;
+  std::string run, scenario, label;  // run: the first seed's run
   double faces_per_frame = kNaN, speed_scale = kNaN, fps = kNaN, faces_per_s = kNaN;
   double speed = kNaN;  // m/s, or the speed scale when the scenario's speed is unknown
   double de_p95 = kNaN, pops_per_min = kNaN, coverage = kNaN, us_per_frame = kNaN;
+  struct Seed {
+    double viewed_p95, viewed_pops, uniform_p95, uniform_pops;
+  };
+  std::vector<Seed> per_seed;
 };
 
 struct ScenarioInfo {
@@ -172,7 +181,7 @@ void fill_chart(vtkChartXY* chart, const ChartPanel& p) {
     }
     ++shown;
   }
-  chart->SetShowLegend(shown > 0);
+  chart->SetShowLegend(shown > 0 && p.legend);
   chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
   chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
   chart->GetLegend()->GetLabelProperties()->SetFontSize(14);
@@ -187,15 +196,31 @@ void fill_chart(vtkChartXY* chart, const ChartPanel& p) {
   }
   vtkAxis* bx = chart->GetAxis(vtkAxis::BOTTOM);
   vtkAxis* ly = chart->GetAxis(vtkAxis::LEFT);
-  if (p.log_x) {
+  if (!p.x_tick_labels.empty()) {
+    vtkNew<vtkDoubleArray> at;
+    vtkNew<vtkStringArray> names;
+    for (std::size_t k = 0; k < p.x_tick_labels.size(); ++k) {
+      at->InsertNextValue(static_cast<double>(k));
+      names->InsertNextValue(p.x_tick_labels[k]);
+    }
+    bx->SetCustomTickPositions(at, names);
+    bx->GetLabelProperties()->SetOrientation(90.0);
+    bx->GetLabelProperties()->SetJustificationToRight();
+    bx->GetLabelProperties()->SetVerticalJustificationToCentered();
+    bx->GetLabelProperties()->SetFontSize(13);
+    xr[0] = -0.6;
+    xr[1] = static_cast<double>(p.x_tick_labels.size()) - 0.4;
+    bx->SetRange(xr[0], xr[1]);
+    bx->SetBehavior(vtkAxis::FIXED);
+  } else if (p.log_x) {
     bx->SetLogScale(true);
     bx->SetUnscaledRange(xr[0] / 1.25, xr[1] * 1.25);
   } else {
     const double pad =
         xr[1] > xr[0] ? 0.06 * (xr[1] - xr[0]) : std::max(0.5, 0.1 * std::fabs(xr[0]));
     bx->SetRange(xr[0] - pad, xr[1] + pad);
+    bx->SetBehavior(vtkAxis::FIXED);
   }
-  bx->SetBehavior(vtkAxis::FIXED);
   if (p.log_y) {
     if (!(yr[0] > 0.0)) {  // no data
       yr[0] = 1.0;
@@ -212,7 +237,7 @@ void fill_chart(vtkChartXY* chart, const ChartPanel& p) {
   double y1 = yr[1];
   if (y1 <= y0) y1 = y0 + 1.0;
   // Room at the top for the legend.
-  const int legend_lines = shown;
+  const int legend_lines = p.legend ? shown : 0;
   y1 += (y1 - y0) * (0.08 + 0.05 * legend_lines);
   if (!p.y_from_zero) y0 -= (y1 - y0) * 0.05;
   ly->SetRange(y0, y1);
@@ -236,8 +261,11 @@ void write_chart_png(const std::string& title, const std::vector<ChartPanel>& pa
   vtkNew<vtkChartMatrix> matrix;
   matrix->SetSize(vtkVector2i(cols, rows));
   // The charts' axes fill their rectangles: borders and gutters hold labels and titles.
-  matrix->SetBorders(95, 72, 30, 92);
-  matrix->SetGutter(vtkVector2f(100.0f, 110.0f));
+  // Category axes write their names downwards: more room under each chart.
+  const bool names = std::any_of(panels.begin(), panels.end(),
+                                 [](const ChartPanel& p) { return !p.x_tick_labels.empty(); });
+  matrix->SetBorders(95, names ? 120 : 72, 30, 92);
+  matrix->SetGutter(vtkVector2f(100.0f, names ? 170.0f : 110.0f));
   view->GetScene()->AddItem(matrix);
   for (int i = 0; i < n; ++i) {
     const vtkVector2i pos(i % cols, rows - 1 - i / cols);
@@ -301,27 +329,54 @@ SweepData load_sweep_data(const std::string& dir) {
     for (std::size_t i = 0; i < t.rows.size(); ++i) us[t.text(i, tr)] = t.number(i, tu);
   }
 
+  const int c_up95 = s.column("error.uniform.de2000.p95");
+  const int c_upops = s.column("pops.uniform.per_min");
+  // Rows that differ only in their seed are one point: the mean over the seeds.
+  std::map<std::tuple<std::string, std::string, double, double, double>, std::size_t> point_of;
+  std::vector<std::vector<double>> sums;  // per point: p95, pops, coverage, us (finite sums)
+  std::vector<std::vector<int>> counts;
   for (std::size_t i = 0; i < s.rows.size(); ++i) {
-    RunPoint r;
-    r.run = s.text(i, c_run);
-    r.scenario = s.text(i, c_scn);
-    r.label = s.text(i, c_label);
-    r.faces_per_frame = s.number(i, c_fpf);
-    r.speed_scale = s.number(i, c_speed);
-    const double fps_col = s.number(i, c_fps);
-    const double frames = s.number(i, c_frames), dur = s.number(i, c_dur);
-    // fps 0: the scenario's own schedule; its mean rate is frames / duration.
-    r.fps = fps_col > 0 ? fps_col : (dur > 0 ? frames / dur : kNaN);
-    r.faces_per_s = r.faces_per_frame * r.fps;
-    r.de_p95 = s.number(i, c_p95);
-    r.pops_per_min = s.number(i, c_pops);
-    r.coverage = s.number(i, c_cov);
-    if (auto it = us.find(r.run); it != us.end()) r.us_per_frame = it->second;
-    d.runs.push_back(std::move(r));
-    if (!d.label_colour.contains(d.runs.back().label)) {
-      const int k = static_cast<int>(d.label_colour.size());
-      d.label_colour[d.runs.back().label] = k;
+    const auto key = std::make_tuple(s.text(i, c_scn), s.text(i, c_label), s.number(i, c_fpf),
+                                     s.number(i, c_speed), s.number(i, c_fps));
+    auto [it, fresh] = point_of.try_emplace(key, d.runs.size());
+    if (fresh) {
+      RunPoint r;
+      r.run = s.text(i, c_run);
+      r.scenario = s.text(i, c_scn);
+      r.label = s.text(i, c_label);
+      r.faces_per_frame = s.number(i, c_fpf);
+      r.speed_scale = s.number(i, c_speed);
+      const double fps_col = s.number(i, c_fps);
+      const double frames = s.number(i, c_frames), dur = s.number(i, c_dur);
+      // fps 0: the scenario's own schedule; its mean rate is frames / duration.
+      r.fps = fps_col > 0 ? fps_col : (dur > 0 ? frames / dur : kNaN);
+      r.faces_per_s = r.faces_per_frame * r.fps;
+      d.runs.push_back(std::move(r));
+      sums.emplace_back(4, 0.0);
+      counts.emplace_back(4, 0);
+      if (!d.label_colour.contains(d.runs.back().label)) {
+        const int k = static_cast<int>(d.label_colour.size());
+        d.label_colour[d.runs.back().label] = k;
+      }
     }
+    const std::size_t k = it->second;
+    const double us_v = us.contains(s.text(i, c_run)) ? us[s.text(i, c_run)] : kNaN;
+    const double v[4] = {s.number(i, c_p95), s.number(i, c_pops), s.number(i, c_cov), us_v};
+    for (int m = 0; m < 4; ++m) {
+      if (std::isfinite(v[m])) {
+        sums[k][m] += v[m];
+        ++counts[k][m];
+      }
+    }
+    d.runs[k].per_seed.push_back({v[0], v[1], c_up95 >= 0 ? s.number(i, c_up95) : kNaN,
+                                  c_upops >= 0 ? s.number(i, c_upops) : kNaN});
+  }
+  for (std::size_t k = 0; k < d.runs.size(); ++k) {
+    const auto mean = [&](int m) { return counts[k][m] > 0 ? sums[k][m] / counts[k][m] : kNaN; };
+    d.runs[k].de_p95 = mean(0);
+    d.runs[k].pops_per_min = mean(1);
+    d.runs[k].coverage = mean(2);
+    d.runs[k].us_per_frame = mean(3);
   }
   for (const auto& r : d.runs) {
     auto it = std::find_if(d.scenarios.begin(), d.scenarios.end(),
@@ -582,6 +637,76 @@ std::vector<ChartPanel> coverage_panels(const SweepData& d, const ScenarioInfo& 
   return {a};
 }
 
+// Box plots across seeds at the nominal speed and the budget nearest 1 face per frame: per
+// planner the range (whisker), the quartiles (box) and median (nearest rank) and every seed.
+std::vector<ChartPanel> seed_panels(const SweepData& d, const ScenarioInfo& sc,
+                                    std::string* title) {
+  double scale = 1.0;
+  auto runs = at_nominal_speed(sc, &scale);
+  const auto budgets = distinct(runs, [](const RunPoint& r) { return r.faces_per_frame; });
+  double budget = budgets.empty() ? 1.0 : budgets[0];
+  for (double b : budgets) {
+    if (std::fabs(std::log(b > 0 ? b : 1e-9)) < std::fabs(std::log(budget > 0 ? budget : 1e-9)))
+      budget = b;
+  }
+  std::erase_if(runs, [&](const RunPoint* r) { return r->faces_per_frame != budget; });
+  std::size_t seeds = 0;
+  for (const RunPoint* r : runs) seeds = std::max(seeds, r->per_seed.size());
+  *title = sc.name + ": across " + std::to_string(seeds) + " seeds (" + speed_text(sc, runs) +
+           ", " + fmt(budget) + " faces/frame)";
+  struct Metric {
+    const char* title;
+    const char* y_label;
+    double RunPoint::Seed::*field;
+  };
+  const Metric metrics[] = {
+      {"viewed ΔE00 p95", "viewed ΔE00 p95", &RunPoint::Seed::viewed_p95},
+      {"viewed colour pops", "pops per viewed receiver-minute", &RunPoint::Seed::viewed_pops},
+      {"uniform ΔE00 p95", "ΔE00 p95, every receiver and normal", &RunPoint::Seed::uniform_p95},
+      {"uniform colour pops", "pops per receiver-minute", &RunPoint::Seed::uniform_pops}};
+  std::vector<ChartPanel> out;
+  for (const Metric& m : metrics) {
+    ChartPanel p;
+    p.title = m.title;
+    p.y_label = m.y_label;  // the x axis names the planners
+    p.legend = false;
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+      const RunPoint& r = *runs[k];
+      p.x_tick_labels.push_back(r.label);
+      std::vector<double> v;
+      for (const auto& sd : r.per_seed) {
+        if (std::isfinite(sd.*m.field)) v.push_back(sd.*m.field);
+      }
+      if (v.empty()) continue;
+      const double x = static_cast<double>(k);
+      const auto q = [&](double pc) { return percentile_nearest_rank(v, pc); };
+      const auto part = [&](std::vector<double> xs, std::vector<double> ys, float width) {
+        ChartSeries s = make_series(d, "", r.label);
+        s.x = std::move(xs);
+        s.y = std::move(ys);
+        s.marker = 0;
+        s.width = width;
+        p.series.push_back(std::move(s));
+      };
+      part({x, x}, {q(0), q(100)}, 1.5f);
+      part({x - 0.3, x + 0.3, x + 0.3, x - 0.3, x - 0.3}, {q(25), q(25), q(75), q(75), q(25)},
+           2.0f);
+      part({x - 0.3, x + 0.3}, {q(50), q(50)}, 4.0f);
+      ChartSeries dots = make_series(d, "", r.label);
+      dots.line_type = 0;
+      dots.marker = 4;
+      dots.marker_size = 6.0f;
+      for (double y : v) {
+        dots.x.push_back(x);
+        dots.y.push_back(y);
+      }
+      p.series.push_back(std::move(dots));
+    }
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
 std::vector<double> json_series(const nlohmann::json& series, const char* key) {
   std::vector<double> out;
   if (!series.contains(key) || !series[key].is_array()) return out;
@@ -680,6 +805,7 @@ std::vector<std::string> write_sweep_charts(const std::string& sweep_dir,
     int columns;
     const RunPoint* series_run = nullptr;
     bool speed_known = false;
+    double height_scale = 1.0;  // taller for the planner names under box plots
   };
   const fs::path charts = fs::path(sweep_dir) / "charts";
   std::vector<Job> jobs;
@@ -694,6 +820,14 @@ std::vector<std::string> write_sweep_charts(const std::string& sweep_dir,
     jobs.push_back(std::move(a));
     jobs.push_back(std::move(b));
     jobs.push_back(std::move(c));
+    const bool several_seeds = std::any_of(
+        sc.runs.begin(), sc.runs.end(), [](const RunPoint* r) { return r->per_seed.size() > 1; });
+    if (several_seeds) {
+      Job e{(charts / (base + "_seeds.png")).string(), "", {}, 2};
+      e.panels = seed_panels(d, sc, &e.title);
+      e.height_scale = 1.3;
+      jobs.push_back(std::move(e));
+    }
     const RunPoint* sr =
         chosen ? (chosen->scenario == sc.name ? chosen : nullptr) : sc.runs.front();
     if (sr != nullptr) {
@@ -718,7 +852,7 @@ std::vector<std::string> write_sweep_charts(const std::string& sweep_dir,
   std::vector<std::string> written;
   for (const auto& j : jobs) {
     write_chart_png(j.title, j.panels, j.columns, j.path, options.overwrite, options.width,
-                    options.height);
+                    static_cast<int>(options.height * j.height_scale));
     written.push_back(j.path);
   }
   return written;

@@ -6,6 +6,11 @@
 //                                  Pareto front (lower cost and lower error) marked;
 //   <scenario>_speed.png           ΔE00 p95 and pops per minute against camera speed;
 //   <scenario>_coverage_budget.png coverage against capture budget;
+//   <scenario>_seeds.png           box plots across seeds (min, quartiles, median, max, and
+//                                  every seed as a dot) of viewed and uniform p95 and pops per
+//                                  planner, at the nominal speed and budget; only when the sweep
+//                                  has several seeds.
+// With several seeds, every other chart plots the mean over the seeds.
 //   <run>_series.png               one run's time series (error, pops, live probes, coverage):
 //                                  the first run of each scenario, or the run chosen.
 #include <string>
@@ -47,6 +52,9 @@ struct ChartPanel {
   bool log_y = false;  // log scale (points with y <= 0 dropped; y_from_zero ignored)
   bool y_from_zero = true;
   bool stagger_widths = false;  // earlier series drawn wider (equal results stay visible)
+  bool legend = true;
+  // Category axis: one label per x = 0, 1, 2, ... (box plots); empty: a numeric axis.
+  std::vector<std::string> x_tick_labels;
 };
 
 // Renders panels (row-major, `columns` per row) under a title into one PNG.

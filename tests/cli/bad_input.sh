@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Bad input: one line naming the file and JSON path, exit code 2, and nothing written: the
 # output path does not appear, or an existing output directory is byte-for-byte unchanged.
-# Covers run, sweep, world, probe, plot and viz. Usage: bad_input.sh AMBISIM_BINARY SOURCE_DIR
+# Covers run, sweep, world, probe, compare, plot and viz. Usage: bad_input.sh AMBISIM_BINARY SOURCE_DIR
 set -u
 bin="$1"
 src="$(cd "$2" && pwd)"
@@ -312,6 +312,14 @@ if [ -n "$run_dir" ] && "$bin" plot "$tmp/swept" >/dev/null 2>&1; then
 else
   echo "FAIL setup: plot of a finished sweep"
   fail=1
+fi
+expect_error compare_not_dir "a_file: not a directory" "$tmp/a_file" -- compare "$tmp/a_file" --baseline constant
+expect_error compare_not_sweep "summary.csv: missing: not a sweep output directory" "$tmp/pngdir" -- compare "$tmp/pngdir" --baseline constant
+if [ -f "$tmp/swept/summary.csv" ]; then
+  expect_error compare_unknown_baseline "no planner \"nope\" in the sweep; planners:" "$tmp/cmp.csv" -- compare "$tmp/swept" --baseline nope --csv "$tmp/cmp.csv"
+  expect_error compare_unknown_metric "no metric column \"error.p95\"; valid metrics:" "$tmp/cmp.csv" -- compare "$tmp/swept" --baseline constant --metric error.p95 --csv "$tmp/cmp.csv"
+  printf 'keep me\n' >"$tmp/kept.csv"
+  expect_error compare_existing_csv "kept.csv: already exists (use --force" "$tmp/kept.csv" -- compare "$tmp/swept" --baseline constant --csv "$tmp/kept.csv"
 fi
 if [ -n "$run_dir" ] && "$bin" viz "${run_dir%/}" --frames 0 >/dev/null 2>&1; then
   expect_error viz_existing_views "already exists (use --force" "$tmp/swept" -- viz "${run_dir%/}" --frames 0

@@ -1,5 +1,7 @@
 // `ambisim plot` on a small synthetic sweep directory: the chart set per scenario, images that
 // show something, errors naming the file, no silent overwrite.
+#include <algorithm>
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
@@ -8,9 +10,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sim/base/csv_table.h"
 #include "sim/base/input_error.h"
 #include "viz/charts.h"
-#include "viz/csv_table.h"
 #include "viz/png_writer.h"
 
 namespace fs = std::filesystem;
@@ -118,6 +120,40 @@ TEST_CASE("plot writes the chart set per scenario", "[viz][charts]") {
   opt.overwrite = ambisim::Overwrite::allow;
   opt.run_id = "demo__nearest__b0.500000__v1";
   CHECK(ambisim::write_sweep_charts(dir.string(), opt).size() == 4);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("plot draws box plots across seeds when the sweep has several", "[viz][charts]") {
+  const auto dir = fs::temp_directory_path() / "ambisim_test_seed_charts";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "runs");
+  std::ofstream s(dir / "summary.csv");
+  s << "run,scenario,planner,label,params,faces_per_frame,speed_scale,fps,seed,scenario_hash,"
+       "frames,duration_s,error.viewed.de2000.p95,pops.viewed.per_min,error.uniform.de2000.p95,"
+       "pops.uniform.per_min,coverage.mean\n";
+  for (const char* planner : {"nearest", "grid", "ambisim"}) {
+    for (int seed = 1; seed <= 5; ++seed) {
+      const double p95 = (planner[0] == 'a' ? 1.0 : 4.0) + 0.3 * seed;
+      s << "demo__" << planner << "__s" << seed << ",demo," << planner << "," << planner
+        << ",{},1,1,0," << seed << ",abc,120,2," << p95 << "," << 2.0 * seed << "," << 2.0 * p95
+        << "," << seed << ",0.5\n";
+    }
+  }
+  s.close();
+  fs::create_directories(dir / "runs" / "demo__ambisim__s1");
+  std::ofstream(dir / "runs" / "demo__ambisim__s1" / "result.json")
+      << R"({"series": {"time": [0, 1, 2], "de2000_mean": [1, 2, 1], "pops": [0, 1, 0]}})";
+  ambisim::PlotOptions opt;
+  opt.width = 900;
+  opt.height = 600;
+  opt.run_id = "demo__ambisim__s1";
+  const auto written = ambisim::write_sweep_charts(dir.string(), opt);
+  const auto boxes = dir / "charts" / "demo_seeds.png";
+  REQUIRE(std::find(written.begin(), written.end(), boxes.string()) != written.end());
+  const auto img = ambisim::read_png(boxes.string());
+  CHECK(img.width == 900);
+  CHECK(img.height == 780);  // taller, for the planner names under the boxes
+  CHECK(distinct_colours(img) > 40);
   fs::remove_all(dir);
 }
 

@@ -1,4 +1,4 @@
-#include "viz/csv_table.h"
+#include "sim/base/csv_table.h"
 
 #include <charconv>
 #include <cmath>
