@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Rewrites the README's results tables from a sweep (summary.csv, timing.csv) over seeds.
+"""Rewrites the README's results tables from a sweep's summary.csv, over seeds.
 
 Usage: scripts/results_tables.py SWEEP_DIR [--ambisim build/ambisim] [--doc README.md]
                                  [--baseline shgraph+vp] [--check]
@@ -11,7 +11,8 @@ the sweep's seeds with its 95 % bootstrap interval from `ambisim compare` (one i
 of the statistics), and on how many seeds the planner beats the baseline on viewed p95.
 A block `<!-- results-headline: SCENARIO bBUDGET PLANNER -->` becomes one sentence: PLANNER
 against the baseline on viewed and uniform p95 and pops, with intervals and wins.
-Text outside the blocks is kept. --check exits 1 (writing nothing) when the doc differs from
+Only deterministic results go in (no measured times: those are docs/PERFORMANCE.md's), so
+the same sweep always gives the same doc. Text outside the blocks is kept. --check exits 1 (writing nothing) when the doc differs from
 what the runs give. Standard library only.
 """
 import argparse
@@ -101,8 +102,6 @@ def main():
     a = ap.parse_args()
 
     summary = read_csv(os.path.join(a.sweep_dir, "summary.csv"))
-    timing_path = os.path.join(a.sweep_dir, "timing.csv")
-    timing = {r["run"]: r for r in read_csv(timing_path)} if os.path.exists(timing_path) else {}
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "compare.json")
         cmd = [a.ambisim, "compare", a.sweep_dir, "--baseline", a.baseline, "--json", out]
@@ -138,7 +137,7 @@ def main():
                  f"{fnum(runs[0]['duration_s']):g} s, {seeds} seed{'s' if seeds != 1 else ''} "
                  f"(mean [95 % CI]):", ""]
         head = ["planner"] + [m[0] for m in METRICS] + \
-               [f"beats {a.baseline} (viewed p95)"] + [c[0] for c in COSTS] + ["planner µs/frame"]
+               [f"beats {a.baseline} (viewed p95)"] + [c[0] for c in COSTS]
         lines.append("| " + " | ".join(head) + " |")
         lines.append("|---|" + "---:|" * (len(head) - 1))
         for label in labels:
@@ -150,10 +149,6 @@ def main():
             for _, col, f in COSTS:
                 vals = [fnum(r[col]) for r in mine if math.isfinite(fnum(r[col]))]
                 cells.append(f.format(sum(vals) / len(vals)) if vals else "–")
-            us = [fnum(timing.get(r["run"], {}).get("timing.planner_us_per_frame", "nan"))
-                  for r in mine]
-            us = [u for u in us if math.isfinite(u)]
-            cells.append(f"{sum(us) / len(us):.1f}" if us else "–")
             lines.append("| " + " | ".join(cells) + " |")
         return "\n".join(lines) + "\n"
 

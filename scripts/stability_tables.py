@@ -5,8 +5,10 @@ Usage: scripts/stability_tables.py STRESS_DIR STRESS_BL_DIR [--doc docs/STABILIT
 
 STRESS_DIR is the output of `ambisim sweep scenarios/sweeps/stress.json`, STRESS_BL_DIR that
 of `ambisim sweep scenarios/stress/sweeps/budget_lifetime.json`. Each sweep's summary.csv
-(one row per run) gives the table columns; each run's runs/<run>/result.json "series" (and,
-for the leave_bounds scenario, views.json "camera_path") gives the failure-mode column.
+(one row per run) gives the table columns (the uniform and the viewed error and pops side by
+side; a NaN, a viewed value with no receiver in view, prints as "–"); each run's
+runs/<run>/result.json "series" (and, for the leave_bounds scenario, views.json
+"camera_path") gives the failure-mode column.
 
 The doc holds generated blocks between HTML comment markers:
 
@@ -33,7 +35,8 @@ import sys
 # Every name read from summary.csv and result.json. Each entry lists the accepted names, the
 # newest first; the first one that exists is used, so the script reads sweeps from before and
 # after a rename (error.de2000.* -> error.uniform.de2000.*, pops.per_min ->
-# pops.uniform.per_min).
+# pops.uniform.per_min). The viewed fields and viewed_receiver_minutes have no older names: a
+# sweep from before them is refused with one line naming the missing field.
 FIELDS = {
     # summary.csv: identity of a run
     "run": ["run"],
@@ -43,10 +46,13 @@ FIELDS = {
     "faces_per_frame": ["faces_per_frame"],
     "frames": ["frames"],
     "duration_s": ["duration_s"],
+    "viewed_minutes": ["viewed_receiver_minutes"],  # 0: no receiver ever in view
     # summary.csv: the table columns
     "de_mean": ["error.uniform.de2000.mean", "error.de2000.mean"],
     "de_p95": ["error.uniform.de2000.p95", "error.de2000.p95"],
+    "de_viewed_p95": ["error.viewed.de2000.p95"],
     "pops_per_min": ["pops.uniform.per_min", "pops.per_min"],
+    "pops_viewed_per_min": ["pops.viewed.per_min"],
     "coverage": ["coverage.mean"],
     "faces_granted": ["faces.granted"],
     "max_live": ["probes.max_live"],
@@ -67,25 +73,32 @@ FIELDS = {
 }
 
 # summary.csv fields that are NaN by definition when a run has no data for them: staleness is
-# defined over lookups that did not fall back; the viewed error and pops (after the rename)
-# over receivers the camera sees, response times over true-change events. Every other numeric
-# field must be finite.
-MAY_BE_NAN = ("staleness.", "error.viewed.", "pops.viewed.", "response.")
+# defined over lookups that did not fall back; response times over true-change events. Every
+# other numeric field must be finite, except the viewed ones (VIEWED), which are defined over
+# receivers the camera sees and must be finite unless viewed_receiver_minutes is 0.
+MAY_BE_NAN = ("staleness.", "response.")
+VIEWED = ("error.viewed.", "pops.viewed.")
 # Series columns that are null by definition on some frames: staleness_mean on a fallback,
 # change_max on a receiver's first frame, de2000_viewed_mean when nothing is seen. Every other
 # series value must be a finite number.
 SERIES_MAY_BE_NULL = ("staleness_mean", "change_max", "de2000_viewed_mean")
 
-# Table columns: header, field, format.
+# Table columns: header, field, format. "uniform" weighs every receiver and normal alike,
+# "viewed" each receiver by its solid angle on screen (the error also each normal by its
+# visible share; scenarios/README.md, "metrics"). A NaN cell (a viewed metric with nothing in
+# view) prints as NAN_CELL.
 COLUMNS = [
-    ("ΔE00 mean", "de_mean", "{:.2f}"),
-    ("ΔE00 p95", "de_p95", "{:.2f}"),
-    ("pops/min", "pops_per_min", "{:.1f}"),
+    ("uniform ΔE00 mean", "de_mean", "{:.2f}"),
+    ("uniform ΔE00 p95", "de_p95", "{:.2f}"),
+    ("viewed ΔE00 p95", "de_viewed_p95", "{:.2f}"),
+    ("uniform pops/min", "pops_per_min", "{:.1f}"),
+    ("viewed pops/min", "pops_viewed_per_min", "{:.1f}"),
     ("coverage", "coverage", "{:.3f}"),
     ("faces granted", "faces_granted", "{:.0f}"),
     ("max live", "max_live", "{:.0f}"),
     ("max bytes", "max_bytes", "{:.0f}"),
 ]
+NAN_CELL = "–"
 FAILURE_HEADER = "failure mode (measured from the series)"
 
 # --- When a fact is listed in the failure-mode column ---------------------------------------
@@ -101,7 +114,8 @@ FIRST_DATA_MIN_S = 0.5
 # Idle budget: "asks for only X of Y faces", X = faces granted, Y = the budget offered
 # (frames x faces per frame); listed when the planner uses less than this share of it. Not
 # listed for planners that do not plan captures within the budget: the oracle (the reference
-# at every receiver, outside the budget) and the two that capture one probe by design.
+# at every receiver, outside the budget) and the two that take their one capture at load time
+# (summary bake.captures), outside the budget, so that their faces granted are 0.
 IDLE_BUDGET_MAX_SHARE = 0.5
 IDLE_BUDGET_EXEMPT = {"oracle", "constant", "hemisphere"}
 # No live probe: share of time (dt-weighted) with live_probes 0; listed from this share on.
@@ -131,6 +145,7 @@ SCENARIO_WINDOWS = {
     "canyon": ["worst_1s"],
     "long_flight": ["halves"],
 }
+SAME_AS_NAMED_FIELDS = 3  # same_as names the differing summary.csv fields up to this many
 CUT_FIRST_S = 0.25  # "in the 0.25 s after a cut"
 CUT_LATE_S = (0.5, 1.0)  # "0.5-1 s after"
 EPS = 1e-9  # frame times are sums of dt: compare against window edges with this slack
@@ -379,8 +394,13 @@ def same_as_fact(run, other_scenario, runs_by_scenario):
         raise DataError(f"no {other_scenario} run of {label} to compare {run.id} with")
     skip = set(FIELDS["run"] + FIELDS["scenario"]) | {"scenario_hash"}
     diff = [k for k in run.row if k not in skip and run.row[k] != other.row.get(k)]
-    parts = [f"summary differs from {other_scenario}'s in {len(diff)} fields" if diff
-             else f"summary.csv row identical to {other_scenario}'s"]
+    if not diff:
+        parts = [f"summary.csv row identical to {other_scenario}'s"]
+    elif len(diff) <= SAME_AS_NAMED_FIELDS:
+        parts = [f"summary.csv row identical to {other_scenario}'s but for "
+                 + ", ".join(f"{k} ({run.row[k]} vs {other.row.get(k)})" for k in diff)]
+    else:
+        parts = [f"summary differs from {other_scenario}'s in {len(diff)} fields"]
 
     worst = 0.0
     for key in ("s_de_mean", "s_de_max"):
@@ -414,7 +434,8 @@ def table(runs, scenario, runs_by_scenario):
     for r in runs:
         cells = [r.field("label")]
         for _, key, fmt in COLUMNS:
-            cells.append(fmt.format(r.value(key)))
+            x = r.value(key)
+            cells.append(NAN_CELL if math.isnan(x) else fmt.format(x))
         cells.append(failure_mode(r, scenario, runs_by_scenario))
         lines.append("| " + " | ".join(cells) + " |")
     return lines
@@ -438,10 +459,13 @@ def checks_block(sweeps):
     total = sum(len(runs) for runs in sweeps.values())
     bad = []
     no_stale = 0
+    no_view = 0
     for runs in sweeps.values():
         for r in runs:
+            unseen = r.value("viewed_minutes") == 0
+            no_view += unseen
             for k, v in r.row.items():
-                if k.startswith(MAY_BE_NAN):
+                if k.startswith(MAY_BE_NAN) or (unseen and k.startswith(VIEWED)):
                     continue
                 try:
                     x = float(v)
@@ -467,7 +491,8 @@ def checks_block(sweeps):
                      "null in any per-frame series value that is defined (`staleness_mean` is "
                      "null on a fallback, `change_max` on a receiver's first frame; "
                      f"`staleness.*` is NaN in the {no_stale} runs whose receiver lookups fell "
-                     "back the whole run).")
+                     f"back the whole run, `error.viewed.*` and `pops.viewed.*` in the {no_view} "
+                     "runs whose receiver is never in view, `viewed_receiver_minutes` 0).")
     return lines
 
 

@@ -64,7 +64,8 @@ TEST_CASE("every planner honours the contract on every scenario", "[contract]") 
 }
 
 TEST_CASE("every planner holding no data answers the default ambient, never black", "[contract]") {
-  // Black is the one answer that is always wrong (35.6 dE00 at budget 0 in docs/STABILITY.md);
+  // Black is the one answer that is always wrong (twice the default ambient's error at budget 0,
+  // measured before the default existed);
   // an engine ships a default ambient for exactly this case.
   for (const auto& info : planner_catalogue()) {
     INFO(info.name);
