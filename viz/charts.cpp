@@ -35,6 +35,7 @@
 #include "sim/base/input_error.h"
 #include "sim/base/json_reader.h"
 #include "sim/base/statistics.h"
+#include "viz/planner_style.h"
 #include "viz/render_capture.h"
 
 namespace fs = std::filesystem;
@@ -44,11 +45,19 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// Tableau 10: distinct, readable on white.
-constexpr unsigned char kPalette[][3] = {
+// Tableau 10, for the lines of one run's time series (quantities, not planners).
+constexpr unsigned char kSeriesColours[][3] = {
     {31, 119, 180}, {255, 127, 14},  {44, 160, 44},   {214, 39, 40},  {148, 103, 189},
     {140, 86, 75},  {227, 119, 194}, {127, 127, 127}, {188, 189, 34}, {23, 190, 207}};
-constexpr int kPaletteSize = 10;
+
+// Legends: font size and the size VTK will give them. VTK measures text only while painting;
+// these match its default font (measured on the charts at 14 points): an entry is the font's
+// height plus 5 pixels of padding, a character about half the font size wide.
+constexpr int kLegendFont = 14;
+constexpr int kLegendFontMin = 8;
+constexpr float kLegendPadding = 5.0f;  // vtkChartLegend's default
+constexpr float kLegendChar = 0.51f;    // mean character width per point of font size
+constexpr float kLegendSymbol = 36.0f;  // symbol width, paddings and border
 
 std::string fmt(double v) {
   char buf[32];
@@ -67,6 +76,7 @@ struct RunPoint {
   double faces_per_frame = kNaN, speed_scale = kNaN, fps = kNaN, faces_per_s = kNaN;
   double speed = kNaN;  // m/s, or the speed scale when the scenario's speed is unknown
   double de_p95 = kNaN, pops_per_min = kNaN, coverage = kNaN, us_per_frame = kNaN;
+  double max_bytes = kNaN;  // the planner's peak memory
   struct Seed {
     double viewed_p95, viewed_pops, uniform_p95, uniform_pops;
   };
@@ -153,47 +163,189 @@ bool data_range(const ChartPanel& p, double x[2], double y[2]) {
   return any;
 }
 
-void fill_chart(vtkChartXY* chart, const ChartPanel& p) {
+// The series a legend lists: those with a name and a point to draw.
+std::vector<std::string> legend_names(const ChartPanel& p) {
+  std::vector<std::string> out;
+  for (const auto& s : p.series) {
+    if (!s.name.empty() && make_table(s, p.log_x, p.log_y)->GetNumberOfRows() > 0) {
+      out.push_back(s.name);
+    }
+  }
+  return out;
+}
+
+// Estimated legend box in pixels (width, height) for these entries at this font size.
+vtkVector2f legend_size(const std::vector<std::string>& names, int font = kLegendFont) {
+  std::size_t chars = 0;
+  for (const auto& n : names) {
+    // UTF-8: count code points, not bytes.
+    std::size_t c = 0;
+    for (unsigned char ch : n) c += (ch & 0xC0) != 0x80;
+    chars = std::max(chars, c);
+  }
+  const auto f = static_cast<float>(font);
+  return {kLegendSymbol + kLegendChar * f * static_cast<float>(chars),
+          kLegendPadding + 1.0f + (f + kLegendPadding) * static_cast<float>(names.size())};
+}
+
+// Axis range with a small margin, `frac` of the span on each side (in decades when log).
+void pad_range(double r[2], bool log, double frac) {
+  if (log) {
+    const double l0 = std::log10(r[0]), l1 = std::log10(r[1]);
+    const double pad = l1 > l0 ? frac * (l1 - l0) : 0.1;
+    r[0] = std::pow(10.0, l0 - pad);
+    r[1] = std::pow(10.0, l1 + pad);
+    return;
+  }
+  const double pad = r[1] > r[0] ? frac * (r[1] - r[0]) : std::max(0.5, 0.1 * std::fabs(r[0]));
+  r[0] -= pad;
+  r[1] += pad;
+}
+
+}  // namespace
+
+AxisRanges panel_ranges(const ChartPanel& p, double legend_room) {
+  AxisRanges r;
+  double* xr = r.x;
+  double* yr = r.y;
+  if (!data_range(p, xr, yr)) {  // nothing to draw: a unit (or one-decade) range
+    xr[0] = p.log_x ? 1.0 : 0.0;
+    xr[1] = p.log_x ? 10.0 : 1.0;
+    yr[0] = p.log_y ? 1.0 : 0.0;
+    yr[1] = p.log_y ? 10.0 : 1.0;
+  }
+  if (!p.x_tick_labels.empty()) {
+    xr[0] = -0.6;
+    xr[1] = static_cast<double>(p.x_tick_labels.size()) - 0.4;
+  } else {
+    pad_range(xr, p.log_x, 0.04);
+  }
+  // y: the data with a small margin (from zero when asked), plus the inline legend's room.
+  const double room = std::clamp(legend_room, 0.0, 0.6);
+  if (p.log_y) {
+    pad_range(yr, true, 0.04);
+    const double l0 = std::log10(yr[0]), l1 = std::log10(yr[1]);
+    yr[1] = std::pow(10.0, l0 + (l1 - l0) / (1.0 - room));
+  } else {
+    double y0 = p.y_from_zero ? std::min(0.0, yr[0]) : yr[0];
+    double y1 = yr[1];
+    if (y1 <= y0) y1 = y0 + 1.0;
+    const double span = y1 - y0;
+    if (!p.y_from_zero || yr[0] < 0.0) y0 -= 0.04 * span;
+    y1 += 0.04 * span;
+    yr[0] = y0;
+    yr[1] = y0 + (y1 - y0) / (1.0 - room);
+  }
+  return r;
+}
+
+namespace {
+
+// A tick label: short for big numbers (20k, 1.5M).
+std::string tick_text(double v) {
+  if (v >= 1e6) return fmt(v / 1e6) + "M";
+  if (v >= 1e4) return fmt(v / 1e3) + "k";
+  return fmt(v);
+}
+
+// Ticks of a log axis over [lo, hi] (data units), every label readable: at `preset` values
+// when given and they do not crowd, else 1-2-5 per decade when there is room for them along
+// the axis (`length` pixels), else 1-3, else decades (every decade, or every other one, ...).
+// VTK's own log ticks leave the data's end unlabelled.
+void set_log_ticks(vtkAxis* axis, double lo, double hi, float length, bool horizontal,
+                   const std::vector<double>& preset) {
+  const auto ticks_of = [&](const std::vector<double>& mantissas, int decade_step) {
+    std::vector<double> out;
+    for (int e = static_cast<int>(std::floor(std::log10(lo))) - 1;
+         e <= static_cast<int>(std::ceil(std::log10(hi))); ++e) {
+      if (e % decade_step != 0) continue;
+      for (double m : mantissas) {
+        const double v = m * std::pow(10.0, e);
+        if (v >= lo * (1 - 1e-9) && v <= hi * (1 + 1e-9)) out.push_back(v);
+      }
+    }
+    return out;
+  };
+  // Neighbouring labels must not touch: their distance along the axis against their size.
+  const double decades = std::log10(hi) - std::log10(lo);
+  const auto extent = [&](double v) {
+    return horizontal ? 10.0 + 8.0 * static_cast<double>(tick_text(v).size()) : 24.0;
+  };
+  const auto fits = [&](const std::vector<double>& t) {
+    for (std::size_t i = 1; i < t.size(); ++i) {
+      const double gap = length * (std::log10(t[i]) - std::log10(t[i - 1])) / decades;
+      if (gap < 0.5 * (extent(t[i]) + extent(t[i - 1]))) return false;
+    }
+    return true;
+  };
+  std::vector<double> ticks;
+  for (double v : preset) {
+    if (v >= lo && v <= hi) ticks.push_back(v);
+  }
+  if (ticks.size() < 2 || !fits(ticks)) {
+    for (const auto& m : std::vector<std::vector<double>>{{1, 2, 5}, {1, 3}, {1}}) {
+      ticks = ticks_of(m, 1);
+      if (fits(ticks) && ticks.size() >= 2) break;
+    }
+    for (int step = 2; !fits(ticks) && step < 10; ++step) ticks = ticks_of({1}, step);
+  }
+  vtkNew<vtkDoubleArray> at;
+  vtkNew<vtkStringArray> names;
+  for (double v : ticks) {
+    at->InsertNextValue(std::log10(v));  // a log axis places its ticks in decades
+    names->InsertNextValue(tick_text(v));
+  }
+  axis->SetCustomTickPositions(at, names);
+}
+
+// Draws a panel into its chart of `size` pixels (the plot area). `legend_room`: the fraction of
+// the plot's height an inline legend at the top takes (the y axis grows by that much); 0: no
+// inline legend.
+void fill_chart(vtkChartXY* chart, const ChartPanel& p, double legend_room,
+                const vtkVector2f& size) {
   chart->SetTitle(p.title);
   chart->GetTitleProperties()->SetFontSize(18);
   chart->GetTitleProperties()->BoldOn();
   style_axis(chart->GetAxis(vtkAxis::BOTTOM), p.x_label);
   style_axis(chart->GetAxis(vtkAxis::LEFT), p.y_label);
+  // The series on top (the project's planner) are drawn last.
+  std::vector<std::size_t> order;
+  for (int top = 0; top < 2; ++top) {
+    for (std::size_t k = 0; k < p.series.size(); ++k) {
+      if (p.series[k].on_top == (top == 1)) order.push_back(k);
+    }
+  }
   int shown = 0;
   const std::size_t count = p.series.size();
-  for (std::size_t k = 0; k < count; ++k) {
+  for (std::size_t k : order) {
     const ChartSeries& s = p.series[k];
     auto table = make_table(s, p.log_x, p.log_y);
     if (table->GetNumberOfRows() == 0) continue;
-    vtkPlot* plot = chart->AddPlot(vtkChart::LINE);
+    // A single point is a marker (VTK's line plot refuses to draw it).
+    vtkPlot* plot =
+        chart->AddPlot(table->GetNumberOfRows() > 1 ? vtkChart::LINE : vtkChart::POINTS);
     plot->SetInputData(table, 0, 1);
     plot->SetLabel(s.name);
     plot->SetColor(s.rgb[0], s.rgb[1], s.rgb[2], s.alpha);
-    // Later lines are drawn thinner so that equal results stay visible under each other.
+    // Earlier lines are drawn wider so that equal results stay visible under each other.
     const float shrink =
         count > 1 ? static_cast<float>(count - 1 - k) / static_cast<float>(count - 1) : 0.0f;
-    const bool front = s.alpha < 255 || !p.stagger_widths;
-    plot->SetWidth(front ? s.width : s.width + 2.5f * shrink);
+    const bool plain = s.alpha < 255 || s.on_top || !p.stagger_widths;
+    plot->SetWidth(plain ? s.width : s.width + 2.0f * shrink);
     plot->GetPen()->SetLineType(s.line_type);
     if (auto* pts = vtkPlotPoints::SafeDownCast(plot)) {
       pts->SetMarkerStyle(s.marker);
-      pts->SetMarkerSize(front ? s.marker_size : s.marker_size + 7.0f * shrink);
+      pts->SetMarkerSize(plain ? s.marker_size : s.marker_size + 5.0f * shrink);
     }
     ++shown;
   }
-  chart->SetShowLegend(shown > 0 && p.legend);
+  chart->SetShowLegend(shown > 0 && legend_room > 0.0);
   chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
   chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
-  chart->GetLegend()->GetLabelProperties()->SetFontSize(14);
+  chart->GetLegend()->GetLabelProperties()->SetFontSize(kLegendFont);
   chart->GetLegend()->GetBrush()->SetColor(255, 255, 255, 215);
 
-  double xr[2], yr[2];
-  if (!data_range(p, xr, yr)) {
-    xr[0] = 0;
-    xr[1] = 1;
-    yr[0] = 0;
-    yr[1] = 1;
-  }
+  const AxisRanges r = panel_ranges(p, legend_room);
   vtkAxis* bx = chart->GetAxis(vtkAxis::BOTTOM);
   vtkAxis* ly = chart->GetAxis(vtkAxis::LEFT);
   if (!p.x_tick_labels.empty()) {
@@ -208,46 +360,24 @@ void fill_chart(vtkChartXY* chart, const ChartPanel& p) {
     bx->GetLabelProperties()->SetJustificationToRight();
     bx->GetLabelProperties()->SetVerticalJustificationToCentered();
     bx->GetLabelProperties()->SetFontSize(13);
-    xr[0] = -0.6;
-    xr[1] = static_cast<double>(p.x_tick_labels.size()) - 0.4;
-    bx->SetRange(xr[0], xr[1]);
-    bx->SetBehavior(vtkAxis::FIXED);
-  } else if (p.log_x) {
-    bx->SetLogScale(true);
-    bx->SetUnscaledRange(xr[0] / 1.25, xr[1] * 1.25);
+    bx->SetRange(r.x[0], r.x[1]);
   } else {
-    const double pad =
-        xr[1] > xr[0] ? 0.06 * (xr[1] - xr[0]) : std::max(0.5, 0.1 * std::fabs(xr[0]));
-    bx->SetRange(xr[0] - pad, xr[1] + pad);
-    bx->SetBehavior(vtkAxis::FIXED);
+    bx->SetLogScale(p.log_x);
+    bx->SetUnscaledRange(r.x[0], r.x[1]);
+    if (p.log_x) set_log_ticks(bx, r.x[0], r.x[1], size[0], true, p.log_x_ticks);
   }
-  if (p.log_y) {
-    if (!(yr[0] > 0.0)) {  // no data
-      yr[0] = 1.0;
-      yr[1] = 10.0;
-    }
-    // Room at the top for the legend, in decades.
-    const double decades = std::max(1.0, std::log10(yr[1] / yr[0]));
-    ly->SetLogScale(true);
-    ly->SetUnscaledRange(yr[0] / 1.5, yr[1] * std::pow(10.0, decades * (0.1 + 0.06 * shown)));
-    ly->SetBehavior(vtkAxis::FIXED);
-    return;
-  }
-  double y0 = p.y_from_zero ? std::min(0.0, yr[0]) : yr[0];
-  double y1 = yr[1];
-  if (y1 <= y0) y1 = y0 + 1.0;
-  // Room at the top for the legend.
-  const int legend_lines = p.legend ? shown : 0;
-  y1 += (y1 - y0) * (0.08 + 0.05 * legend_lines);
-  if (!p.y_from_zero) y0 -= (y1 - y0) * 0.05;
-  ly->SetRange(y0, y1);
+  bx->SetBehavior(vtkAxis::FIXED);
+  ly->SetLogScale(p.log_y);
+  ly->SetUnscaledRange(r.y[0], r.y[1]);
+  if (p.log_y) set_log_ticks(ly, r.y[0], r.y[1], size[1], false, {});
   ly->SetBehavior(vtkAxis::FIXED);
 }
 
 }  // namespace
 
 void write_chart_png(const std::string& title, const std::vector<ChartPanel>& panels, int columns,
-                     const std::string& path, Overwrite overwrite, int width, int height) {
+                     const std::string& path, Overwrite overwrite, int width, int height,
+                     bool shared_legend) {
   vtkNew<vtkContextView> view;
   vtkRenderWindow* win = view->GetRenderWindow();
   win->SetOffScreenRendering(1);
@@ -258,20 +388,84 @@ void write_chart_png(const std::string& title, const std::vector<ChartPanel>& pa
   const int n = static_cast<int>(panels.size());
   const int cols = std::max(1, std::min(columns, n));
   const int rows = (n + cols - 1) / cols;
-  vtkNew<vtkChartMatrix> matrix;
-  matrix->SetSize(vtkVector2i(cols, rows));
+
+  // One legend for the figure: the panel listing the most series lends its legend (every panel
+  // draws a planner alike), placed in an empty cell, or else right of the panels.
+  int legend_panel = -1;
+  std::vector<std::string> legend_entries;
+  if (shared_legend) {
+    for (int i = 0; i < n; ++i) {
+      auto names = legend_names(panels[static_cast<std::size_t>(i)]);
+      if (names.size() > legend_entries.size()) {
+        legend_entries = std::move(names);
+        legend_panel = i;
+      }
+    }
+  }
+
   // The charts' axes fill their rectangles: borders and gutters hold labels and titles.
   // Category axes write their names downwards: more room under each chart.
-  const bool names = std::any_of(panels.begin(), panels.end(),
-                                 [](const ChartPanel& p) { return !p.x_tick_labels.empty(); });
-  matrix->SetBorders(95, names ? 120 : 72, 30, 92);
-  matrix->SetGutter(vtkVector2f(100.0f, names ? 170.0f : 110.0f));
+  std::size_t name_chars = 0;  // the longest category name
+  for (const auto& p : panels) {
+    for (const auto& t : p.x_tick_labels) name_chars = std::max(name_chars, t.size());
+  }
+  const bool names = name_chars > 0;
+  const int name_room = static_cast<int>(7 * name_chars);  // 13-point names, written downwards
+  const int bottom = names ? std::max(120, name_room + 25) : 72, top_border = 92;
+  const vtkVector2f gutter(100.0f,
+                           names ? static_cast<float>(std::max(170, name_room + 65)) : 110.0f);
+  const float cell_h =
+      (static_cast<float>(height - bottom - top_border) - gutter[1] * (rows - 1)) / rows;
+  // The legend goes into the empty cell (the last row's) when it fits there, down into the
+  // border below; else right of the panels over the whole height, in a smaller font if need be.
+  int legend_font = kLegendFont;
+  vtkVector2f legend = legend_size(legend_entries, legend_font);
+  const bool legend_in_cell = legend_panel >= 0 && n < rows * cols &&
+                              legend[1] <= cell_h + static_cast<float>(bottom) - 12.0f;
+  if (legend_panel >= 0 && !legend_in_cell) {
+    const auto room = static_cast<float>(height - top_border - 12);
+    while (legend[1] > room && legend_font > kLegendFontMin) {
+      legend = legend_size(legend_entries, --legend_font);
+    }
+  }
+  const int border[4] = {
+      95, bottom, legend_panel >= 0 && !legend_in_cell ? 60 + static_cast<int>(legend[0]) : 30,
+      top_border};
+
+  vtkNew<vtkChartMatrix> matrix;
+  matrix->SetSize(vtkVector2i(cols, rows));
+  matrix->SetBorders(border[0], border[1], border[2], border[3]);
+  matrix->SetGutter(gutter);
   view->GetScene()->AddItem(matrix);
+  const float cell_w =
+      (static_cast<float>(width - border[0] - border[2]) - gutter[0] * (cols - 1)) / cols;
+  vtkChartXY* legend_chart = nullptr;
   for (int i = 0; i < n; ++i) {
     const vtkVector2i pos(i % cols, rows - 1 - i / cols);
     auto* chart = vtkChartXY::SafeDownCast(matrix->GetChart(pos));
     if (chart == nullptr) continue;
-    fill_chart(chart, panels[static_cast<std::size_t>(i)]);
+    const ChartPanel& p = panels[static_cast<std::size_t>(i)];
+    const auto entries = legend_names(p);
+    const double room = !shared_legend && p.legend && !entries.empty()
+                            ? (legend_size(entries)[1] + 8.0) / std::max(1.0f, cell_h)
+                            : 0.0;
+    fill_chart(chart, p, room, {cell_w, cell_h});
+    if (i == legend_panel) legend_chart = chart;
+  }
+  if (legend_chart != nullptr) {
+    // Top-left in the first empty cell, or right of the panels at the top.
+    float x = static_cast<float>(width - border[2]) + 20.0f;
+    float top = static_cast<float>(height - border[3]);
+    if (legend_in_cell) {
+      x = static_cast<float>(border[0]) + static_cast<float>(n % cols) * (cell_w + gutter[0]);
+      top -= static_cast<float>(n / cols) * (cell_h + gutter[1]);
+    }
+    vtkChartLegend* l = legend_chart->GetLegend();
+    legend_chart->SetShowLegend(true);
+    l->GetLabelProperties()->SetFontSize(legend_font);
+    l->SetHorizontalAlignment(vtkChartLegend::CUSTOM);
+    l->SetVerticalAlignment(vtkChartLegend::CUSTOM);
+    l->SetPoint(vtkVector2f(x, top - legend[1]));
   }
 
   vtkNew<vtkTextActor> heading;
@@ -294,7 +488,7 @@ struct SweepData {
   std::string summary_path;
   std::vector<RunPoint> runs;
   std::vector<ScenarioInfo> scenarios;
-  std::map<std::string, int> label_colour;
+  std::map<std::string, PlannerStyle> styles;  // per label, over the whole sweep
 };
 
 SweepData load_sweep_data(const std::string& dir) {
@@ -331,9 +525,10 @@ SweepData load_sweep_data(const std::string& dir) {
 
   const int c_up95 = s.column("error.uniform.de2000.p95");
   const int c_upops = s.column("pops.uniform.per_min");
+  const int c_bytes = s.column("memory.max_bytes");
   // Rows that differ only in their seed are one point: the mean over the seeds.
   std::map<std::tuple<std::string, std::string, double, double, double>, std::size_t> point_of;
-  std::vector<std::vector<double>> sums;  // per point: p95, pops, coverage, us (finite sums)
+  std::vector<std::vector<double>> sums;  // per point: p95, pops, coverage, us, bytes
   std::vector<std::vector<int>> counts;
   for (std::size_t i = 0; i < s.rows.size(); ++i) {
     const auto key = std::make_tuple(s.text(i, c_scn), s.text(i, c_label), s.number(i, c_fpf),
@@ -352,17 +547,14 @@ SweepData load_sweep_data(const std::string& dir) {
       r.fps = fps_col > 0 ? fps_col : (dur > 0 ? frames / dur : kNaN);
       r.faces_per_s = r.faces_per_frame * r.fps;
       d.runs.push_back(std::move(r));
-      sums.emplace_back(4, 0.0);
-      counts.emplace_back(4, 0);
-      if (!d.label_colour.contains(d.runs.back().label)) {
-        const int k = static_cast<int>(d.label_colour.size());
-        d.label_colour[d.runs.back().label] = k;
-      }
+      sums.emplace_back(5, 0.0);
+      counts.emplace_back(5, 0);
     }
     const std::size_t k = it->second;
     const double us_v = us.contains(s.text(i, c_run)) ? us[s.text(i, c_run)] : kNaN;
-    const double v[4] = {s.number(i, c_p95), s.number(i, c_pops), s.number(i, c_cov), us_v};
-    for (int m = 0; m < 4; ++m) {
+    const double v[5] = {s.number(i, c_p95), s.number(i, c_pops), s.number(i, c_cov), us_v,
+                         c_bytes >= 0 ? s.number(i, c_bytes) : kNaN};
+    for (int m = 0; m < 5; ++m) {
       if (std::isfinite(v[m])) {
         sums[k][m] += v[m];
         ++counts[k][m];
@@ -377,7 +569,11 @@ SweepData load_sweep_data(const std::string& dir) {
     d.runs[k].pops_per_min = mean(1);
     d.runs[k].coverage = mean(2);
     d.runs[k].us_per_frame = mean(3);
+    d.runs[k].max_bytes = mean(4);
   }
+  std::vector<std::string> labels;
+  for (const auto& r : d.runs) labels.push_back(r.label);
+  d.styles = planner_styles(labels);
   for (const auto& r : d.runs) {
     auto it = std::find_if(d.scenarios.begin(), d.scenarios.end(),
                            [&](const ScenarioInfo& x) { return x.name == r.scenario; });
@@ -405,15 +601,18 @@ SweepData load_sweep_data(const std::string& dir) {
   return d;
 }
 
-const unsigned char* colour_of(const SweepData& d, const std::string& label) {
-  return kPalette[d.label_colour.at(label) % kPaletteSize];
-}
-
+// A series in the planner's style (colour, marker, line, width; on top for ambisim).
 ChartSeries make_series(const SweepData& d, const std::string& name, const std::string& label) {
+  const PlannerStyle& st = d.styles.at(label);
   ChartSeries s;
   s.name = name;
-  const unsigned char* c = colour_of(d, label);
-  std::copy(c, c + 3, s.rgb);
+  std::copy(st.rgb.begin(), st.rgb.end(), s.rgb);
+  s.marker = st.marker;
+  s.line_type = st.line_type;
+  s.width = st.width;
+  s.marker_size = st.marker_size;
+  s.on_top = st.emphasis;
+  s.reference = st.reference;
   return s;
 }
 
@@ -449,17 +648,24 @@ void sort_by_x(ChartSeries& s) {
   s.y = std::move(y);
 }
 
-// The Pareto front (lower x and lower y both better) of all finite points of the series.
-ChartSeries pareto_front(const std::vector<ChartSeries>& series) {
+// The Pareto front (lower x and lower y both better) of all finite points of the series, the
+// references (the oracle: no budget, no game can run it) left out.
+ChartSeries pareto_front(const std::vector<ChartSeries>& series, bool log_x) {
   std::vector<std::pair<double, double>> pts;
+  bool without = false;
   for (const auto& s : series) {
+    without = without || s.reference;
+    if (s.reference) continue;
     for (std::size_t i = 0; i < s.x.size(); ++i) {
+      if (log_x && !(s.x[i] > 0.0)) continue;
       if (std::isfinite(s.x[i]) && std::isfinite(s.y[i])) pts.emplace_back(s.x[i], s.y[i]);
     }
   }
   std::sort(pts.begin(), pts.end());
+  // A staircase: the best error so far holds as the cost grows until the next point of the
+  // front (never interpolated between planners).
   ChartSeries f;
-  f.name = "Pareto front";
+  f.name = without ? "Pareto front (no oracle)" : "Pareto front";
   f.rgb[0] = f.rgb[1] = f.rgb[2] = 60;
   f.alpha = 70;
   f.width = 12.0f;
@@ -467,6 +673,10 @@ ChartSeries pareto_front(const std::vector<ChartSeries>& series) {
   double best = std::numeric_limits<double>::infinity();
   for (const auto& [x, y] : pts) {
     if (y < best) {
+      if (!f.x.empty()) {
+        f.x.push_back(x);
+        f.y.push_back(best);
+      }
       f.x.push_back(x);
       f.y.push_back(y);
       best = y;
@@ -497,6 +707,14 @@ std::string speed_text(const ScenarioInfo& sc, const std::vector<const RunPoint*
   return sc.speed_known ? "camera " + join(v, " m/s") : "speed scale " + join(v, "x");
 }
 
+// The k-th variant of a planner's series (another fps or budget): its colour, another line
+// type and marker.
+void vary_style(ChartSeries& s, int k) {
+  if (k == 0) return;
+  s.line_type = 1 + (s.line_type - 1 + k) % 4;
+  s.marker = marker_variant(s.marker, k);
+}
+
 // Lines per planner label (and per fps when several), x and y picked by the functions.
 template <class FX, class FY>
 std::vector<ChartSeries> lines_by_label(const SweepData& d,
@@ -517,8 +735,7 @@ std::vector<ChartSeries> lines_by_label(const SweepData& d,
     if (it == keys.end()) {
       keys.push_back(key);
       out.push_back(make_series(d, key, r->label));
-      out.back().line_type = 1 + style % 4;
-      out.back().marker = 4 - style % 4;
+      vary_style(out.back(), style);
       it = keys.end() - 1;
     }
     ChartSeries& s = out[static_cast<std::size_t>(it - keys.begin())];
@@ -551,21 +768,32 @@ std::vector<ChartPanel> accuracy_cost_panels(const SweepData& d, const ScenarioI
       d, runs, [](const RunPoint& r) { return r.faces_per_s; },
       [](const RunPoint& r) { return r.de_p95; });
   a.log_x = wide_range(distinct(runs, [](const RunPoint& r) { return r.faces_per_s; }));
+  a.log_x_ticks = distinct(runs, [](const RunPoint& r) { return r.faces_per_s; });
   a.stagger_widths = true;
-  a.series.insert(a.series.begin(), pareto_front(a.series));
+  a.series.insert(a.series.begin(), pareto_front(a.series, a.log_x));
 
-  ChartPanel b;
-  b.title = "viewed ΔE00 p95 vs planner CPU time";
-  b.x_label = "planner time per frame (µs, measured)";
-  b.y_label = "viewed ΔE00 p95 (CIEDE2000)";
-  b.series = lines_by_label(
-      d, runs, [](const RunPoint& r) { return r.us_per_frame; },
-      [](const RunPoint& r) { return r.de_p95; });
-  for (auto& s : b.series) s.line_type = 0;  // CPU time is not an ordered axis per planner
-  b.log_x = wide_range(distinct(runs, [](const RunPoint& r) { return r.us_per_frame; }));
-  b.stagger_widths = true;
-  b.series.insert(b.series.begin(), pareto_front(b.series));
-  return {a, b};
+  // Costs a planner does not order (a point per budget): markers only, log axes when they span
+  // a decade or so.
+  const auto scatter = [&](const char* name, const char* x_label, auto fx) {
+    ChartPanel p;
+    p.title = name;
+    p.x_label = x_label;
+    p.y_label = "viewed ΔE00 p95 (CIEDE2000)";
+    p.series = lines_by_label(d, runs, fx, [](const RunPoint& r) { return r.de_p95; });
+    for (auto& s : p.series) s.line_type = 0;
+    p.log_x = wide_range(distinct(runs, fx));
+    p.stagger_widths = true;
+    p.series.insert(p.series.begin(), pareto_front(p.series, p.log_x));
+    return p;
+  };
+  std::vector<ChartPanel> out = {
+      a, scatter("viewed ΔE00 p95 vs planner CPU time", "planner time per frame (µs, measured)",
+                 [](const RunPoint& r) { return r.us_per_frame; })};
+  if (!distinct(runs, [](const RunPoint& r) { return r.max_bytes; }).empty()) {
+    out.push_back(scatter("viewed ΔE00 p95 vs planner memory", "planner memory, peak (KiB)",
+                          [](const RunPoint& r) { return r.max_bytes / 1024.0; }));
+  }
+  return out;
 }
 
 std::vector<ChartPanel> speed_panels(const SweepData& d, const ScenarioInfo& sc,
@@ -578,22 +806,24 @@ std::vector<ChartPanel> speed_panels(const SweepData& d, const ScenarioInfo& sc,
   for (const RunPoint* r : sc.runs) {
     if (std::find(shown.begin(), shown.end(), r->faces_per_s) != shown.end()) runs.push_back(r);
   }
-  *title = sc.name + ": error and pops against camera speed (budgets " + join(shown, " faces/s") +
+  *title = sc.name + ": error and pops against camera speed (budget " + join(shown, " faces/s") +
            ", " + fps_text(runs) + ")";
+  // A line per planner (and per frame rate when the sweep has several).
+  const auto fps_values = distinct(runs, [](const RunPoint& r) { return r.fps; });
   auto make = [&](auto fy) {
     std::vector<ChartSeries> out;
     std::vector<std::string> keys;
     for (const RunPoint* r : runs) {
-      const int bi =
-          static_cast<int>(std::find(shown.begin(), shown.end(), r->faces_per_s) - shown.begin());
-      const std::string key =
-          shown.size() > 1 ? r->label + ", " + fmt(r->faces_per_s) + " faces/s" : r->label;
+      const auto fi = std::find(fps_values.begin(), fps_values.end(), r->fps) - fps_values.begin();
+      const auto bi = std::find(shown.begin(), shown.end(), r->faces_per_s) - shown.begin();
+      std::string key = r->label;
+      if (shown.size() > 1) key += ", " + fmt(r->faces_per_s) + " faces/s";
+      if (fps_values.size() > 1) key += " @ " + fmt(r->fps) + " fps";
       auto it = std::find(keys.begin(), keys.end(), key);
       if (it == keys.end()) {
         keys.push_back(key);
         out.push_back(make_series(d, key, r->label));
-        out.back().line_type = 1 + bi % 4;
-        out.back().marker = 4 - bi % 4;
+        vary_style(out.back(), static_cast<int>(bi * std::ssize(fps_values) + fi));
         it = keys.end() - 1;
       }
       ChartSeries& s = out[static_cast<std::size_t>(it - keys.begin())];
@@ -634,6 +864,7 @@ std::vector<ChartPanel> coverage_panels(const SweepData& d, const ScenarioInfo& 
       [](const RunPoint& r) { return r.coverage; });
   a.stagger_widths = true;
   a.log_x = wide_range(distinct(runs, [](const RunPoint& r) { return r.faces_per_s; }));
+  a.log_x_ticks = distinct(runs, [](const RunPoint& r) { return r.faces_per_s; });
   return {a};
 }
 
@@ -653,7 +884,7 @@ std::vector<ChartPanel> seed_panels(const SweepData& d, const ScenarioInfo& sc,
   std::size_t seeds = 0;
   for (const RunPoint* r : runs) seeds = std::max(seeds, r->per_seed.size());
   *title = sc.name + ": across " + std::to_string(seeds) + " seeds (" + speed_text(sc, runs) +
-           ", " + fmt(budget) + " faces/frame)";
+           ", " + fmt(budget) + (budget == 1.0 ? " face/frame)" : " faces/frame)");
   struct Metric {
     const char* title;
     const char* y_label;
@@ -680,22 +911,25 @@ std::vector<ChartPanel> seed_panels(const SweepData& d, const ScenarioInfo& sc,
       if (v.empty()) continue;
       const double x = static_cast<double>(k);
       const auto q = [&](double pc) { return percentile_nearest_rank(v, pc); };
+      // In the planner's colour (ambisim's boxes bolder); every seed in its marker.
+      const ChartSeries style = make_series(d, "", r.label);
+      const float bold = style.on_top ? 1.6f : 1.0f;
       const auto part = [&](std::vector<double> xs, std::vector<double> ys, float width) {
-        ChartSeries s = make_series(d, "", r.label);
+        ChartSeries s = style;
         s.x = std::move(xs);
         s.y = std::move(ys);
+        s.line_type = 1;
         s.marker = 0;
-        s.width = width;
+        s.width = width * bold;
         p.series.push_back(std::move(s));
       };
       part({x, x}, {q(0), q(100)}, 1.5f);
       part({x - 0.3, x + 0.3, x + 0.3, x - 0.3, x - 0.3}, {q(25), q(25), q(75), q(75), q(25)},
            2.0f);
       part({x - 0.3, x + 0.3}, {q(50), q(50)}, 4.0f);
-      ChartSeries dots = make_series(d, "", r.label);
+      ChartSeries dots = style;
       dots.line_type = 0;
-      dots.marker = 4;
-      dots.marker_size = 6.0f;
+      dots.marker_size = style.on_top ? 9.0f : 7.0f;
       for (double y : v) {
         dots.x.push_back(x);
         dots.y.push_back(y);
@@ -732,7 +966,7 @@ std::vector<ChartPanel> series_panels(const RunPoint& run, bool speed_known,
     c.name = name;
     c.x = t;
     c.y = y;
-    std::copy(kPalette[colour], kPalette[colour] + 3, c.rgb);
+    std::copy(kSeriesColours[colour], kSeriesColours[colour] + 3, c.rgb);
     c.marker = 0;
     c.width = 2.0f;
     return c;
@@ -805,7 +1039,8 @@ std::vector<std::string> write_sweep_charts(const std::string& sweep_dir,
     int columns;
     const RunPoint* series_run = nullptr;
     bool speed_known = false;
-    double height_scale = 1.0;  // taller for the planner names under box plots
+    double height_scale = 1.0;   // taller for the planner names under box plots
+    bool shared_legend = false;  // one legend for the figure (the panels draw the same planners)
   };
   const fs::path charts = fs::path(sweep_dir) / "charts";
   std::vector<Job> jobs;
@@ -813,10 +1048,12 @@ std::vector<std::string> write_sweep_charts(const std::string& sweep_dir,
     const std::string base = safe_name(sc.name);
     Job a{(charts / (base + "_accuracy_cost.png")).string(), "", {}, 2};
     a.panels = accuracy_cost_panels(d, sc, &a.title);
+    if (a.panels.size() > 2) a.height_scale = 1.5;  // two rows, the legend in the fourth cell
     Job b{(charts / (base + "_speed.png")).string(), "", {}, 2};
     b.panels = speed_panels(d, sc, &b.title);
     Job c{(charts / (base + "_coverage_budget.png")).string(), "", {}, 1};
     c.panels = coverage_panels(d, sc, &c.title);
+    a.shared_legend = b.shared_legend = c.shared_legend = true;
     jobs.push_back(std::move(a));
     jobs.push_back(std::move(b));
     jobs.push_back(std::move(c));
@@ -852,7 +1089,7 @@ std::vector<std::string> write_sweep_charts(const std::string& sweep_dir,
   std::vector<std::string> written;
   for (const auto& j : jobs) {
     write_chart_png(j.title, j.panels, j.columns, j.path, options.overwrite, options.width,
-                    static_cast<int>(options.height * j.height_scale));
+                    static_cast<int>(options.height * j.height_scale), j.shared_legend);
     written.push_back(j.path);
   }
   return written;

@@ -1,9 +1,10 @@
 #pragma once
 // `ambisim plot`: PNG charts of a sweep directory (summary.csv, timing.csv, runs/*/result.json),
 // drawn with VTK's 2-D charts offscreen. One chart set per scenario, written to DIR/charts/:
-//   <scenario>_accuracy_cost.png   ΔE00 p95 against capture budget (faces/s) and against the
-//                                  planner's CPU time per frame, one line per planner, the
-//                                  Pareto front (lower cost and lower error) marked;
+//   <scenario>_accuracy_cost.png   ΔE00 p95 against the costs: capture budget (faces/s, a line
+//                                  per planner), the planner's CPU time per frame and its peak
+//                                  memory (a point per budget), each with its Pareto front
+//                                  (lower cost and lower error; the oracle left out);
 //   <scenario>_speed.png           ΔE00 p95 and pops per minute against camera speed;
 //   <scenario>_coverage_budget.png coverage against capture budget;
 //   <scenario>_seeds.png           box plots across seeds (min, quartiles, median, max, and
@@ -13,6 +14,9 @@
 // With several seeds, every other chart plots the mean over the seeds.
 //   <run>_series.png               one run's time series (error, pops, live probes, coverage):
 //                                  the first run of each scenario, or the run chosen.
+// Every planner keeps one style (colour, marker) in every chart of the sweep
+// (viz/planner_style.h); a figure whose panels show the same planners has one legend, outside
+// the plots. Cost axes are logarithmic where the values span 8x or more.
 #include <string>
 #include <vector>
 
@@ -41,24 +45,42 @@ struct ChartSeries {
   unsigned char alpha = 255;
   float width = 2.5f;
   int line_type = 1;  // vtkPen line type: 0 none, 1 solid, 2 dash, 3 dot, 4 dash-dot
-  int marker = 4;     // vtkPlotPoints marker style: 0 none, 1 cross, 2 plus, 3 square, 4 circle
+  int marker = 4;     // vtkPlotPoints marker style: 0 none, 1 cross, 2 plus, 3 square, 4 circle,
+                      // 5 diamond
   float marker_size = 9.0f;
+  bool on_top = false;     // drawn after every other series (the project's planner)
+  bool reference = false;  // a reference, not a contender: left out of the Pareto front
 };
 
 struct ChartPanel {
   std::string title, x_label, y_label;
   std::vector<ChartSeries> series;
   bool log_x = false;
-  bool log_y = false;  // log scale (points with y <= 0 dropped; y_from_zero ignored)
+  std::vector<double> log_x_ticks;  // a log x axis's ticks (e.g. the budgets swept), when they
+                                    // fit; empty or crowded: 1-2-5 per decade or sparser
+  bool log_y = false;               // log scale (points with y <= 0 dropped; y_from_zero ignored)
   bool y_from_zero = true;
   bool stagger_widths = false;  // earlier series drawn wider (equal results stay visible)
-  bool legend = true;
+  bool legend = true;           // an inline legend (top right; the y axis makes room for it)
   // Category axis: one label per x = 0, 1, 2, ... (box plots); empty: a numeric axis.
   std::vector<std::string> x_tick_labels;
 };
 
-// Renders panels (row-major, `columns` per row) under a title into one PNG.
+// The axis ranges a panel is drawn with (data units, also for log axes): the data with a margin
+// of 4% of the span (of the decades when log) on each side, y from zero when `y_from_zero` (and
+// no data below); category axes from -0.6 to n - 0.4; the y axis grown by `legend_room`, the
+// fraction of the plot an inline legend takes at the top (0 when the legend is outside).
+struct AxisRanges {
+  double x[2], y[2];
+};
+AxisRanges panel_ranges(const ChartPanel& p, double legend_room = 0.0);
+
+// Renders panels (row-major, `columns` per row) under a title into one PNG. Axes fit the data
+// with a small margin. `shared_legend`: one legend for the figure instead of one per panel (for
+// panels that draw the same series alike): the legend of the panel listing the most series,
+// outside every plot, in the first empty cell of the grid or else right of the panels.
 void write_chart_png(const std::string& title, const std::vector<ChartPanel>& panels, int columns,
-                     const std::string& path, Overwrite overwrite, int width, int height);
+                     const std::string& path, Overwrite overwrite, int width, int height,
+                     bool shared_legend = false);
 
 }  // namespace ambisim

@@ -13,6 +13,7 @@
 #include "sim/base/csv_table.h"
 #include "sim/base/input_error.h"
 #include "viz/charts.h"
+#include "viz/planner_style.h"
 #include "viz/png_writer.h"
 
 namespace fs = std::filesystem;
@@ -81,6 +82,15 @@ fs::path make_sweep_dir() {
     }
   }
   return dir;
+}
+
+// Pixels of exactly this colour.
+std::size_t pixels_of(const ambisim::ImageRgb8& img, const std::array<unsigned char, 3>& c) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i + 2 < img.rgb.size(); i += 3) {
+    n += img.rgb[i] == c[0] && img.rgb[i + 1] == c[1] && img.rgb[i + 2] == c[2];
+  }
+  return n;
 }
 
 }  // namespace
@@ -179,5 +189,91 @@ TEST_CASE("plot rejects bad input naming the file", "[viz][charts]") {
   }
   CHECK_THROWS_AS(ambisim::write_sweep_charts((dir / "missing").string(), opt),
                   ambisim::InputError);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("axes fit the data: small margins, no room for a legend drawn outside", "[viz][charts]") {
+  ambisim::ChartPanel p;
+  for (int k = 0; k < 14; ++k) {
+    ambisim::ChartSeries s;
+    s.name = "planner " + std::to_string(k);
+    s.x = {30.0, 60.0};
+    s.y = {2.0 + k, 27.0 - k};
+    p.series.push_back(s);
+  }
+  auto r = ambisim::panel_ranges(p);
+  CHECK(r.y[0] == 0.0);
+  CHECK(r.y[1] >= 27.0);
+  CHECK(r.y[1] <= 27.0 * 1.05);
+  CHECK(r.x[0] < 30.0);
+  CHECK(r.x[0] > 28.0);
+  CHECK(r.x[1] > 60.0);
+  CHECK(r.x[1] < 62.0);
+  // An inline legend over a third of the plot: the y axis grows by that much, no more.
+  r = ambisim::panel_ranges(p, 1.0 / 3.0);
+  CHECK(r.y[1] == Approx(27.0 * 1.04 * 1.5));
+  // Log axes: a margin in decades; not from zero.
+  p.log_x = p.log_y = true;
+  p.series[0].x = {0.1, 100.0};
+  r = ambisim::panel_ranges(p);
+  CHECK(r.x[0] < 0.1);
+  CHECK(r.x[0] > 0.1 / 1.5);
+  CHECK(r.x[1] > 100.0);
+  CHECK(r.x[1] < 150.0);
+  CHECK(r.y[0] > 1.0);
+  CHECK(r.y[1] < 27.0 * 1.5);
+}
+
+TEST_CASE("plot draws every planner of a 20-planner sweep in its own style", "[viz][charts]") {
+  const auto dir = fs::temp_directory_path() / "ambisim_test_styled_charts";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "runs");
+  std::vector<std::string> planners = {
+      "oracle",    "constant", "hemisphere", "nearest",       "per_object", "grid",   "octree",
+      "octree+vp", "shgraph",  "shgraph+vp", "shgraph+route", "shgraph2d",  "ambisim"};
+  for (int k = 1; k <= 7; ++k) planners.push_back("new_planner_" + std::to_string(k));
+  std::ofstream s(dir / "summary.csv");
+  std::ofstream t(dir / "timing.csv");
+  s << "run,scenario,planner,label,params,faces_per_frame,speed_scale,fps,seed,scenario_hash,"
+       "frames,duration_s,error.viewed.de2000.p95,pops.viewed.per_min,error.uniform.de2000.p95,"
+       "pops.uniform.per_min,coverage.mean,memory.max_bytes\n";
+  t << "run,timing.planner_us_per_frame\n";
+  std::string first;
+  for (std::size_t k = 0; k < planners.size(); ++k) {
+    for (double budget : {0.5, 1.0, 2.0}) {
+      for (double speed : {1.0, 2.0}) {
+        for (int seed = 1; seed <= 3; ++seed) {
+          const std::string run = "demo__" + planners[k] + "__b" + std::to_string(budget) + "__v" +
+                                  std::to_string(speed) + "__s" + std::to_string(seed);
+          if (first.empty()) first = run;
+          const double p95 =
+              (1.0 + static_cast<double>(k)) * (1.0 + 0.5 / budget) * speed + 0.1 * seed;
+          s << run << ",demo," << planners[k] << "," << planners[k] << ",{}," << budget << ","
+            << speed << ",60," << seed << ",abc,120,2," << p95 << "," << 3 * p95 << "," << 2 * p95
+            << "," << 4 * p95 << "," << 0.02 * static_cast<double>(k) * budget << ","
+            << 300 * std::pow(1.5, static_cast<double>(k)) << "\n";
+          t << run << "," << 0.1 * std::pow(1.4, static_cast<double>(k)) * budget << "\n";
+        }
+      }
+    }
+  }
+  s.close();
+  t.close();
+  fs::create_directories(dir / "runs" / first);
+  std::ofstream(dir / "runs" / first / "result.json")
+      << R"({"series": {"time": [0, 1, 2], "de2000_mean": [1, 2, 1], "pops": [0, 1, 0]}})";
+  ambisim::PlotOptions opt;
+  const auto written = ambisim::write_sweep_charts(dir.string(), opt);
+  CHECK(written.size() == 5);
+  const auto styles = ambisim::planner_styles(planners);
+  // Twenty planners, twenty colours: each one shows in every chart of planners (the box plots
+  // have no legend: there only the boxes and dots carry the colours).
+  for (const char* chart : {"demo_accuracy_cost.png", "demo_speed.png", "demo_seeds.png"}) {
+    const auto img = ambisim::read_png((dir / "charts" / chart).string());
+    for (const auto& [label, st] : styles) {
+      INFO(chart << ": " << label);
+      CHECK(pixels_of(img, st.rgb) >= 20);
+    }
+  }
   fs::remove_all(dir);
 }
