@@ -11,15 +11,10 @@
 
 #include "sim/base/input_error.h"
 #include "viz/charts.h"
+#include "viz/planner_style.h"
 
 namespace ambisim {
 namespace {
-
-// Tableau 10, as the sweep charts use it.
-constexpr unsigned char kPalette[][3] = {
-    {31, 119, 180}, {255, 127, 14},  {44, 160, 44},   {214, 39, 40},  {148, 103, 189},
-    {140, 86, 75},  {227, 119, 194}, {127, 127, 127}, {188, 189, 34}, {23, 190, 207}};
-constexpr int kPaletteSize = 10;
 
 double to_ns(double t, const std::string& unit) {
   if (unit == "us") return t * 1e3;
@@ -128,13 +123,12 @@ void write_planner_bench_chart(const std::string& bench_json, const std::string&
   std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) {
     return std::tie(a.kind, a.planner, a.live) < std::tie(b.kind, b.planner, b.live);
   });
-  // Planner colours in order of first appearance in the file's planner set (sorted by name).
-  std::map<std::string, int> colour;
+  // Every planner in its style, as in the sweep charts.
+  std::vector<std::string> planners;
   for (const auto& p : points) {
-    if (!p.planner.empty()) colour.emplace(p.planner, 0);
+    if (!p.planner.empty()) planners.push_back(p.planner);
   }
-  int next = 0;
-  for (auto& [name, c] : colour) c = next++;
+  const auto styles = planner_styles(planners);
 
   ChartPanel lookup, frame;
   lookup.title = "lookup";
@@ -145,39 +139,44 @@ void write_planner_bench_chart(const std::string& bench_json, const std::string&
   frame.y_label = "us per frame";
   for (ChartPanel* panel : {&lookup, &frame}) panel->log_x = panel->log_y = true;
 
-  const auto series_for = [](ChartPanel& panel, const std::string& name, int c) -> ChartSeries& {
+  const auto series_for = [&](ChartPanel& panel, const std::string& name) -> ChartSeries& {
     for (auto& s : panel.series) {
       if (s.name == name) return s;
     }
     ChartSeries s;
     s.name = name;
-    const int k = c % kPaletteSize;
-    std::copy(kPalette[k], kPalette[k] + 3, s.rgb);
-    // Past ten planners, reuse the colours with dashed lines.
-    if (c >= kPaletteSize) s.line_type = 2;
+    if (const auto it = styles.find(name); it != styles.end()) {
+      const PlannerStyle& st = it->second;
+      std::copy(st.rgb.begin(), st.rgb.end(), s.rgb);
+      s.marker = st.marker;
+      s.line_type = st.line_type;
+      s.width = st.width;
+      s.marker_size = st.marker_size;
+      s.on_top = st.emphasis;
+    }
     panel.series.push_back(s);
     return panel.series.back();
   };
   for (const auto& p : points) {
     if (p.kind == "lookup_naive") {
-      ChartSeries& s = series_for(lookup, "naive linear scan", 0);
+      ChartSeries& s = series_for(lookup, "naive linear scan");
       s.rgb[0] = s.rgb[1] = s.rgb[2] = 90;
-      s.line_type = 2;
+      s.line_type = 3;
       s.marker = 0;
       s.x.push_back(p.live);
       s.y.push_back(p.ns);
     } else if (p.kind == "lookup") {
-      ChartSeries& s = series_for(lookup, p.planner, colour[p.planner]);
+      ChartSeries& s = series_for(lookup, p.planner);
       s.x.push_back(p.live);
       s.y.push_back(p.ns);
     } else {
-      ChartSeries& s = series_for(frame, p.planner, colour[p.planner]);
+      ChartSeries& s = series_for(frame, p.planner);
       s.x.push_back(p.live);
       s.y.push_back(p.ns / 1e3);
     }
   }
   write_chart_png("Planner cost against live probes (bench_planners)", {lookup, frame}, 2, png,
-                  overwrite, width, height);
+                  overwrite, width, height, /*shared_legend=*/true);
 }
 
 }  // namespace ambisim

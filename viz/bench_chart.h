@@ -3,7 +3,7 @@
 // JSON of bench/bench_planners (--benchmark_out=FILE --benchmark_out_format=json). Two panels,
 // log-log, one line per planner against the live probes it actually held (the counter
 // "live", not the target): lookup cost (BM_Lookup/<planner>/<N>, with the naive linear scan
-// BM_LookupNaive/<N> as a dashed grey line) and the planner's per-frame cost
+// BM_LookupNaive/<N> as a dotted grey line) and the planner's per-frame cost
 // (BM_Frame/<planner>/<N>).
 #include <string>
 #include <vector>
