@@ -22,11 +22,26 @@
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
+#include "sim/colour/rgb.h"
 #include "sim/sh/sh9.h"
 
 namespace ambisim {
 
 class Spline3;
+
+// What an engine knows of its own lighting at a time: its time of day and weather state, never
+// the lighting solution at a point.
+struct LightingInfo {
+  glm::dvec3 sun_dir{0.0, 0.0, 1.0};  // toward the sun
+  bool sun_on = false;
+  Rgb sun_irradiance{0.0f};  // on a plane facing the sun
+  Sh9Rgb sky_sh;             // the sky's radiance (clouds at their mean cover), zero below
+  double lamp_level = 0.0;   // street lamps: 0 off, 1 on
+  // How fast the lighting changes anywhere (1/s): the largest relative rate of the sun's and
+  // the sky's brightness, the sun's angular speed (rad/s), the fog's, and 1/s around a lamp
+  // switch. Cloud drift is local: WorldQueries::lighting_change_at.
+  double change_rate = 0.0;
+};
 
 // World knowledge a game engine legitimately has (never the lighting solution).
 struct WorldQueries {
@@ -35,6 +50,12 @@ struct WorldQueries {
   const Spline3* road = nullptr;                         // may be null
   glm::dvec3 bounds_min{0.0};
   glm::dvec3 bounds_max{0.0};
+  // The lighting at a time (the frame's own time, or any other: an engine knows its time-of-day
+  // schedule); and how fast it changes at a point (the global rate and the local cloud drift).
+  std::function<LightingInfo(double)> lighting;
+  std::function<double(const glm::dvec3&, double)> lighting_change_at;
+  bool lighting_static = true;  // nothing ever changes: lifetimes can be infinite
+  bool has_lamps = false;       // the world has street lamps (lamp layers are worth capturing)
 };
 
 struct FrameContext {
@@ -55,14 +76,19 @@ struct FrameContext {
 struct CaptureRequest {
   glm::dvec3 position{0.0};
   std::uint64_t tag = 0;  // the planner's own id for this capture; echoed on delivery
+  // Also render the street lamps' light apart (thesis 7.5.3: an additive set scaled by the
+  // lamps' state): 12 faces instead of 6; `sh` is then everything but the lamps.
+  bool lamp_layer = false;
 };
 
 struct FinishedProbe {
   std::uint64_t tag = 0;
   glm::dvec3 position{0.0};
-  Sh9Rgb sh;
+  Sh9Rgb sh;  // all the light at its faces' times (or all but the lamps, with a lamp layer)
   double requested_time = 0.0;
   double finished_time = 0.0;
+  bool has_lamp_layer = false;
+  Sh9Rgb sh_lamps{};  // the lamps alone at full power (with a lamp layer)
 };
 
 // Which stored probes contributed to a lookup, for coverage and staleness.

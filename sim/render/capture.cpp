@@ -50,30 +50,40 @@ glm::dvec3 capture_origin(const World& w, const glm::dvec3& p) {
   return {p.x, p.y, std::max(p.z, top + kCaptureLift)};
 }
 
-void capture_face(const World& w, const glm::dvec3& p, CubeFace face, CubeMap& inout,
+void capture_face(const Illumination& il, const glm::dvec3& p, CubeFace face, CubeMap& inout,
                   Marcher marcher) {
+  const World& w = il.world();
   const glm::dvec3 o = capture_origin(w, p);
   const int n = inout.size;
   if (n <= kMaxTabulatedSize) {
     const std::vector<glm::dvec3>& dirs = texel_directions(n);
     const std::size_t first = inout.index(face, 0, 0), count = static_cast<std::size_t>(n) * n;
     for (std::size_t k = first; k < first + count; ++k) {
-      inout.texel[k] = trace_radiance(w, o, dirs[k], marcher);
+      inout.texel[k] = trace_radiance(il, o, dirs[k], marcher);
     }
     return;
   }
   for (int j = 0; j < n; ++j) {
     for (int i = 0; i < n; ++i) {
       const glm::dvec3 d = cube_texel_direction(face, n, i, j);
-      inout.at(face, i, j) = trace_radiance(w, o, d, marcher);
+      inout.at(face, i, j) = trace_radiance(il, o, d, marcher);
     }
   }
 }
 
-CubeMap capture(const World& w, const glm::dvec3& p, int face_size, Marcher marcher) {
+void capture_face(const World& w, const glm::dvec3& p, CubeFace face, CubeMap& inout,
+                  Marcher marcher) {
+  capture_face(Illumination(w), p, face, inout, marcher);
+}
+
+CubeMap capture(const Illumination& il, const glm::dvec3& p, int face_size, Marcher marcher) {
   CubeMap m(face_size);
-  for (int f = 0; f < kCubeFaces; ++f) capture_face(w, p, static_cast<CubeFace>(f), m, marcher);
+  for (int f = 0; f < kCubeFaces; ++f) capture_face(il, p, static_cast<CubeFace>(f), m, marcher);
   return m;
+}
+
+CubeMap capture(const World& w, const glm::dvec3& p, int face_size, Marcher marcher) {
+  return capture(Illumination(w), p, face_size, marcher);
 }
 
 }  // namespace ambisim

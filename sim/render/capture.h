@@ -17,12 +17,17 @@ inline constexpr double kCaptureLift = 0.01;
 // The point a capture at p actually renders from (p, or p lifted out of a column).
 glm::dvec3 capture_origin(const World& w, const glm::dvec3& p);
 
-// Renders all six faces, face_size x face_size texels each (face_size >= 1).
+// Renders all six faces, face_size x face_size texels each (face_size >= 1), in the light of
+// `il` (its moment and layer; illumination.h), or of the world's own static lighting.
+CubeMap capture(const Illumination& il, const glm::dvec3& p, int face_size,
+                Marcher marcher = Marcher::accelerated);
 CubeMap capture(const World& w, const glm::dvec3& p, int face_size,
                 Marcher marcher = Marcher::accelerated);
 
 // Renders one face into `inout` (which must already have the wanted size): the simulator
-// captures one face per frame.
+// captures one face per frame, each in the light of its own frame.
+void capture_face(const Illumination& il, const glm::dvec3& p, CubeFace face, CubeMap& inout,
+                  Marcher marcher = Marcher::accelerated);
 void capture_face(const World& w, const glm::dvec3& p, CubeFace face, CubeMap& inout,
                   Marcher marcher = Marcher::accelerated);
 

@@ -350,20 +350,21 @@ RayHit march(const World& w, const glm::dvec3& o, const glm::dvec3& d, Marcher m
   return m == Marcher::accelerated ? march_accelerated(w, o, d) : march_naive(w, o, d);
 }
 
-Rgb hit_radiance(const World& w, const glm::dvec3& o, const glm::dvec3& d, const RayHit& h) {
-  const Lighting& light = w.lighting();
+Rgb hit_radiance(const Illumination& il, const glm::dvec3& o, const glm::dvec3& d,
+                 const RayHit& h) {
   switch (h.kind) {
     case HitKind::Sky:
-      return light.sky_ray(d);
+      return il.sky(o, d);
     case HitKind::FarGround:
-      return light.apply_fog(w.far_ground_radiance(), h.t);
+      return il.far_ground(o, d, h.t);
     case HitKind::Column:
       break;
   }
-  const Rgb l = (h.face == ColumnFace::Top || h.face == ColumnFace::Inside)
-                    ? w.top_radiance(h.ix, h.iy)
-                    : w.wall_radiance(h.ix, h.iy, h.face, o.z + d.z * h.t);
-  return light.apply_fog(l, h.t);
+  return il.column(h.ix, h.iy, h.face, o, d, h.t);
+}
+
+Rgb hit_radiance(const World& w, const glm::dvec3& o, const glm::dvec3& d, const RayHit& h) {
+  return hit_radiance(Illumination(w), o, d, h);
 }
 
 }  // namespace ambisim

@@ -8,6 +8,7 @@
 #include <glm/vec3.hpp>
 
 #include "sim/colour/rgb.h"
+#include "sim/world/illumination.h"
 #include "sim/world/world.h"
 
 namespace ambisim {
@@ -38,11 +39,17 @@ RayHit march_accelerated(const World& w, const glm::dvec3& o, const glm::dvec3& 
 RayHit march_naive(const World& w, const glm::dvec3& o, const glm::dvec3& d);
 RayHit march(const World& w, const glm::dvec3& o, const glm::dvec3& d, Marcher m);
 
-// Outgoing radiance toward the ray origin from what the ray hit, fogged over t.
+// Outgoing radiance toward the ray origin from what the ray hit, fogged over t, in the light
+// of `il` (the world's own static lighting when given the world).
+Rgb hit_radiance(const Illumination& il, const glm::dvec3& o, const glm::dvec3& d, const RayHit& h);
 Rgb hit_radiance(const World& w, const glm::dvec3& o, const glm::dvec3& d, const RayHit& h);
 
+inline Rgb trace_radiance(const Illumination& il, const glm::dvec3& o, const glm::dvec3& d,
+                          Marcher m) {
+  return hit_radiance(il, o, d, march(il.world(), o, d, m));
+}
 inline Rgb trace_radiance(const World& w, const glm::dvec3& o, const glm::dvec3& d, Marcher m) {
-  return hit_radiance(w, o, d, march(w, o, d, m));
+  return trace_radiance(Illumination(w), o, d, m);
 }
 
 }  // namespace ambisim

@@ -11,6 +11,8 @@
 #include "sim/scenario/scenario_motion.h"
 #include "sim/sh/irradiance_reference.h"
 #include "sim/sh/sh_projection.h"
+#include "sim/world/illumination.h"
+#include "sim/world/lighting_model.h"
 #include "sim/world/world.h"
 
 namespace ambisim {
@@ -62,19 +64,26 @@ std::shared_ptr<const ReferenceTrack> compute_reference_track(const Scenario& sc
   track->irradiance.assign(track->ids.size() * nn, Rgb(0.0f));
   track->sh.assign(track->ids.size(), Sh9Rgb{});
 
-  // Pass 2: captures at key samples (cached by exact position), interpolation in between.
+  // Pass 2: captures at key samples, interpolation in between. Under static lighting a capture
+  // depends only on the position (static receivers are captured once); under changing light on
+  // the position and the time. Captures are made in time order within each phase, so the
+  // lighting (a moving sun's shadow maps) advances once per phase instead of once per receiver.
   const IrradianceIntegrator integrator(scenario.reference.face_size, track->normals);
   const ShProjector& projector = projector_for(scenario.reference.face_size);
   track->face_size = scenario.reference.face_size;
+  LightingModel lighting(world);
+  const bool timeless = lighting.is_static();
   struct Captured {
     std::vector<Rgb> irradiance;
     Sh9Rgb sh;
   };
-  std::map<PositionKey, Captured> cache;
-  auto reference_at = [&](const glm::dvec3& p) -> const Captured& {
-    auto [it, inserted] = cache.try_emplace(key_of(p));
+  std::map<std::pair<PositionKey, std::uint64_t>, Captured> cache;
+  auto reference_at = [&](const glm::dvec3& p, double time) -> const Captured& {
+    const std::uint64_t tkey = timeless ? 0 : std::bit_cast<std::uint64_t>(time);
+    auto [it, inserted] = cache.try_emplace({key_of(p), tkey});
     if (inserted) {
-      const CubeMap cube = capture(world, p, scenario.reference.face_size);
+      const Illumination il(world, lighting.state_at(time));
+      const CubeMap cube = capture(il, p, scenario.reference.face_size);
       it->second.irradiance = integrator.integrate(cube);
       it->second.sh = projector.project(cube);
       ++track->captures;
@@ -83,23 +92,37 @@ std::shared_ptr<const ReferenceTrack> compute_reference_track(const Scenario& sc
   };
   const double interval = scenario.reference.interval_s;
   auto store = [&](const Sample& smp) {
-    const Captured& c = reference_at(smp.position);
+    const Captured& c = reference_at(smp.position, smp.time);
     std::copy(c.irradiance.begin(), c.irradiance.end(), track->irradiance.begin() + smp.slot * nn);
     track->sh[smp.slot] = c.sh;
+  };
+  // Stores the given (receiver, sample) pairs in time order (then slot order: deterministic).
+  using Job = std::pair<std::uint64_t, std::size_t>;
+  auto store_in_time_order = [&](std::vector<Job>& jobs) {
+    std::sort(jobs.begin(), jobs.end(), [&](const Job& a, const Job& b) {
+      const Sample& sa = by_receiver[a.first][a.second];
+      const Sample& sb = by_receiver[b.first][b.second];
+      return sa.time < sb.time || (sa.time == sb.time && sa.slot < sb.slot);
+    });
+    for (const Job& j : jobs) store(by_receiver[j.first][j.second]);
   };
   // Phase 1: key samples of every receiver: all of them, or the first in each time bucket
   // plus the last one.
   std::map<std::uint64_t, std::vector<std::size_t>> keys_of;
-  for (auto& [id, samples] : by_receiver) {
-    std::vector<std::size_t>& keys = keys_of[id];
-    for (std::size_t k = 0; k < samples.size(); ++k) {
-      const bool last = k + 1 == samples.size();
-      if (interval <= 0.0 || k == 0 || last ||
-          std::floor(samples[k].time / interval) != std::floor(samples[k - 1].time / interval)) {
-        keys.push_back(k);
-        store(samples[k]);
+  {
+    std::vector<Job> jobs;
+    for (auto& [id, samples] : by_receiver) {
+      std::vector<std::size_t>& keys = keys_of[id];
+      for (std::size_t k = 0; k < samples.size(); ++k) {
+        const bool last = k + 1 == samples.size();
+        if (interval <= 0.0 || k == 0 || last ||
+            std::floor(samples[k].time / interval) != std::floor(samples[k - 1].time / interval)) {
+          keys.push_back(k);
+          jobs.push_back({id, k});
+        }
       }
     }
+    store_in_time_order(jobs);
   }
   // The display exposure, from the key samples (with every frame keyed: from all of them).
   {
@@ -145,30 +168,46 @@ std::shared_ptr<const ReferenceTrack> compute_reference_track(const Scenario& sc
     };
     return departs(lerp, m);
   };
+  // An interval whose ends differ has its midpoint captured; if linear interpolation of the
+  // ends mispredicts the midpoint, both halves are intervals of the next wave. Each interval's
+  // fate depends only on its own ends, so refining wave by wave (the midpoints of a wave
+  // captured in time order) captures exactly what a depth-first refinement would.
+  struct Interval {
+    std::uint64_t id;
+    std::size_t lo, hi;
+  };
+  std::vector<Interval> wave;
   for (auto& [id, samples] : by_receiver) {
-    std::vector<std::size_t>& keys = keys_of[id];
-    std::vector<std::size_t> refined;
-    std::vector<std::pair<std::size_t, std::size_t>> stack;
-    for (std::size_t a = 0; a + 1 < keys.size(); ++a) {
-      refined.push_back(keys[a]);
-      stack.assign(1, {keys[a], keys[a + 1]});
-      std::vector<std::size_t> added;
-      while (!stack.empty()) {
-        const auto [lo, hi] = stack.back();
-        stack.pop_back();
-        if (hi - lo < 2 || !differs(samples[lo], samples[hi])) continue;
-        const std::size_t mid = lo + (hi - lo) / 2;
-        store(samples[mid]);
-        added.push_back(mid);
-        if (!mispredicted(samples[lo], samples[mid], samples[hi])) continue;
-        stack.push_back({lo, mid});
-        stack.push_back({mid, hi});
-      }
-      std::sort(added.begin(), added.end());
-      refined.insert(refined.end(), added.begin(), added.end());
+    const std::vector<std::size_t>& keys = keys_of[id];
+    for (std::size_t a = 0; a + 1 < keys.size(); ++a) wave.push_back({id, keys[a], keys[a + 1]});
+  }
+  std::map<std::uint64_t, std::vector<std::size_t>> added_of;
+  while (!wave.empty()) {
+    std::vector<Interval> split;
+    std::vector<Job> jobs;
+    for (const Interval& iv : wave) {
+      const auto& samples = by_receiver[iv.id];
+      if (iv.hi - iv.lo < 2 || !differs(samples[iv.lo], samples[iv.hi])) continue;
+      jobs.push_back({iv.id, iv.lo + (iv.hi - iv.lo) / 2});
+      split.push_back(iv);
     }
-    if (!keys.empty()) refined.push_back(keys.back());
-    keys = std::move(refined);
+    store_in_time_order(jobs);
+    std::vector<Interval> next;
+    for (const Interval& iv : split) {
+      const auto& samples = by_receiver[iv.id];
+      const std::size_t mid = iv.lo + (iv.hi - iv.lo) / 2;
+      added_of[iv.id].push_back(mid);
+      if (!mispredicted(samples[iv.lo], samples[mid], samples[iv.hi])) continue;
+      next.push_back({iv.id, iv.lo, mid});
+      next.push_back({iv.id, mid, iv.hi});
+    }
+    wave = std::move(next);
+  }
+  for (auto& [id, keys] : keys_of) {
+    const auto it = added_of.find(id);
+    if (it == added_of.end()) continue;
+    keys.insert(keys.end(), it->second.begin(), it->second.end());
+    std::sort(keys.begin(), keys.end());
   }
   // Phase 3: linear interpolation in time between consecutive keys.
   for (auto& [id, samples] : by_receiver) {

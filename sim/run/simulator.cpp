@@ -12,6 +12,8 @@
 #include "sim/scenario/capture_budget.h"
 #include "sim/scenario/scenario_motion.h"
 #include "sim/sh/sh_projection.h"
+#include "sim/world/illumination.h"
+#include "sim/world/lighting_model.h"
 #include "sim/world/world.h"
 #include "sim/world/world_queries.h"
 
@@ -29,6 +31,8 @@ struct InFlight {
   int faces_done = 0;
   CubeMap cube;
   const Sh9Rgb* memo = nullptr;  // a memoised reference capture (oracle only)
+  CubeMap lamp_cube;             // the lamp layer (faces 6..11 of a layered capture)
+  int faces() const { return request.lamp_layer ? 2 * kCubeFaces : kCubeFaces; }
 };
 
 }  // namespace
@@ -85,7 +89,8 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
   ScenarioMotion motion(scenario, world);
   CaptureBudget budget(scenario.budget);
   const int face_size = scenario.budget.face_size;
-  const WorldQueries world_queries = planner_world_queries(world);
+  LightingModel lighting(world);
+  const WorldQueries world_queries = planner_world_queries(world, &lighting);
   const auto ground = [&world](double x, double y) { return world.ground_height(x, y); };
 
   std::vector<InFlight> in_flight;
@@ -110,17 +115,29 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
   }
   const int oracle_face_size =
       reference != nullptr && reference->face_size > 0 ? reference->face_size : face_size;
-  auto render_all_faces = [&](InFlight& c, std::size_t frame) {
+  // Face k of a capture at the current frame's light: 0-5 the capture (without the lamps when
+  // it has a lamp layer), 6-11 the lamp layer.
+  auto render_face = [&](InFlight& c, int k, const LightingState& light) {
+    if (k < kCubeFaces) {
+      const Illumination il(world, light,
+                            c.request.lamp_layer ? LightLayer::base : LightLayer::all);
+      capture_face(il, c.request.position, static_cast<CubeFace>(k), c.cube);
+    } else {
+      if (c.lamp_cube.size != c.cube.size) c.lamp_cube = CubeMap(c.cube.size);
+      const Illumination il(world, light, LightLayer::lamps);
+      capture_face(il, c.request.position, static_cast<CubeFace>(k - kCubeFaces), c.lamp_cube);
+    }
+  };
+  auto render_all_faces = [&](InFlight& c, std::size_t frame, const LightingState& light) {
     const auto t0 = Clock::now();
     const std::ptrdiff_t slot = reference->find_slot(frame, c.request.position);
-    c.memo = slot >= 0 ? &reference->sh[static_cast<std::size_t>(slot)] : nullptr;
+    c.memo = slot >= 0 && !c.request.lamp_layer ? &reference->sh[static_cast<std::size_t>(slot)]
+                                                : nullptr;
     if (c.memo == nullptr) {
       if (c.cube.size != oracle_face_size) c.cube = CubeMap(oracle_face_size);
-      for (int f = 0; f < kCubeFaces; ++f) {
-        capture_face(world, c.request.position, static_cast<CubeFace>(f), c.cube);
-      }
+      for (int f = 0; f < c.faces(); ++f) render_face(c, f, light);
     }
-    c.faces_done = kCubeFaces;
+    c.faces_done = c.faces();
     result.timing.capture_s += seconds_since(t0);
   };
   auto finish = [&](const InFlight& c, double time) {
@@ -129,6 +146,10 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
     p.tag = c.request.tag;
     p.position = c.request.position;
     p.sh = c.memo != nullptr ? *c.memo : projector_for(c.cube.size).project(c.cube);
+    if (c.request.lamp_layer) {
+      p.has_lamp_layer = true;
+      p.sh_lamps = projector_for(c.lamp_cube.size).project(c.lamp_cube);
+    }
     p.requested_time = c.requested_time;
     p.finished_time = time;
     result.timing.capture_s += seconds_since(t0);
@@ -152,9 +173,10 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
     metrics.begin_frame(mf.frame.index, mf.frame.time, mf.frame.dt, mf.camera.cut);
     budget.begin_frame(mf.frame.time);
 
+    const LightingState& light = lighting.state_at(mf.frame.time);
     FrameCosts costs;
     std::int64_t owed = 0;
-    for (const auto& c : in_flight) owed += kCubeFaces - c.faces_done;
+    for (const auto& c : in_flight) owed += c.faces() - c.faces_done;
 
     FrameContext ctx;
     ctx.frame = mf.frame.index;
@@ -175,18 +197,19 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
     if (frame_index == 0) {
       const auto tb = Clock::now();
       for (const auto& req : planner.preload(ctx)) {
-        InFlight c{req, 0.0, 0, CubeMap(face_size), nullptr};
-        for (int f = 0; f < kCubeFaces; ++f) {
-          capture_face(world, c.request.position, static_cast<CubeFace>(f), c.cube);
-        }
-        c.faces_done = kCubeFaces;
+        InFlight c{req, 0.0, 0, CubeMap(face_size), nullptr, CubeMap()};
+        for (int f = 0; f < c.faces(); ++f) render_face(c, f, light);
         FinishedProbe p;
         p.tag = req.tag;
         p.position = req.position;
         p.sh = projector_for(c.cube.size).project(c.cube);
+        if (req.lamp_layer) {
+          p.has_lamp_layer = true;
+          p.sh_lamps = projector_for(c.lamp_cube.size).project(c.lamp_cube);
+        }
         planner.deliver(p);
         ++bake.captures;
-        bake.faces += kCubeFaces;
+        bake.faces += c.faces();
       }
       result.timing.bake_s += seconds_since(tb);
       metrics.bake(bake);
@@ -202,8 +225,8 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
     for (const auto& req : requests) {
       if (started < ctx.startable_captures) {
         planner.started(req.tag);
-        in_flight.push_back(
-            {req, mf.frame.time, 0, unlimited ? CubeMap() : CubeMap(face_size), nullptr});
+        in_flight.push_back({req, mf.frame.time, 0, unlimited ? CubeMap() : CubeMap(face_size),
+                             nullptr, CubeMap()});
         ++started;
         ++result.captures_started;
       } else {
@@ -216,18 +239,18 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
     // 3. render faces within the budget, oldest capture first.
     finished.clear();
     std::int64_t needed = 0;
-    for (const auto& c : in_flight) needed += kCubeFaces - c.faces_done;
+    for (const auto& c : in_flight) needed += c.faces() - c.faces_done;
     costs.faces_requested = needed;
     if (unlimited) {
-      for (auto& c : in_flight) render_all_faces(c, frame_index);
+      for (auto& c : in_flight) render_all_faces(c, frame_index, light);
       costs.faces_granted = needed;
     } else {
       int grant = budget.grant(static_cast<int>(std::min<std::int64_t>(needed, 1 << 30)));
       costs.faces_granted = grant;
       const auto tc = Clock::now();
       for (auto& c : in_flight) {
-        while (grant > 0 && c.faces_done < kCubeFaces) {
-          capture_face(world, c.request.position, static_cast<CubeFace>(c.faces_done), c.cube);
+        while (grant > 0 && c.faces_done < c.faces()) {
+          render_face(c, c.faces_done, light);
           ++c.faces_done;
           --grant;
         }
@@ -236,9 +259,9 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
     }
     costs.faces_refused = costs.faces_requested - costs.faces_granted;
     for (auto it = in_flight.begin(); it != in_flight.end();) {
-      if (it->faces_done == kCubeFaces) {
+      if (it->faces_done == it->faces()) {
         finished.push_back(finish(*it, mf.frame.time));
-        costs.faces_used += kCubeFaces;
+        costs.faces_used += it->faces();
         it = in_flight.erase(it);
       } else {
         ++it;

@@ -9,13 +9,14 @@
 
 #include "sim/base/hash.h"
 #include "sim/world/landmarks.h"
+#include "sim/world/lighting_model.h"
+#include "sim/world/shadow_heights.h"
 #include "sim/world/terrain_noise.h"
 
 namespace ambisim {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr float kNoShadow = HeightPyramid::kEmpty;
 
 double smoothstep(double a, double b, double x) {
   const double t = std::clamp((x - a) / (b - a), 0.0, 1.0);
@@ -160,6 +161,7 @@ double upper_quantile(const std::vector<float>& values, double f) {
 
 void World::allocate(const WorldParams& params) {
   landmarks_ = std::make_shared<LandmarkCache>();
+  start_lighting_ = std::make_shared<StartLighting>();
   params_ = params;
   lighting_ = Lighting(params.sun, params.sky, params.fog);
   cell_ = params.cell_m;
@@ -296,6 +298,7 @@ World World::flat_test_world(double disc_radius_m, const Rgb& disc_radiance, con
   p.origin = {-0.5 * size_m, -0.5 * size_m};
   p.road.enabled = false;
   p.sun.enabled = false;
+  p.sky.model = SkyParams::Model::gradient;
   p.sky.uniform = true;
   p.sky.uniform_radiance = sky;
   World w;
@@ -330,53 +333,8 @@ void World::finalize() {
   pyramid_ = HeightPyramid(surface_, nx_, ny_);
 }
 
-// Shadow-height sweep: S(c) = max(H(q), S(q)) - |q - c| tan(elevation), where q is one cell
-// toward the sun along the dominant axis (linear interpolation across the other axis), so
-// cells are processed in rows moving away from the sun in O(cells).
 void World::compute_shadow_heights() {
-  shadow_.assign(surface_.size(), kNoShadow);
-  const glm::dvec3 s = lighting_.sun_dir();
-  const double horiz = std::hypot(s.x, s.y);
-  if (!lighting_.sun_on()) {
-    std::fill(shadow_.begin(), shadow_.end(), std::numeric_limits<float>::infinity());
-    return;
-  }
-  if (horiz < 1e-9) return;  // sun at the zenith: nothing is shadowed
-  const double tan_e = s.z / horiz;
-  const bool x_major = std::abs(s.x) >= std::abs(s.y);
-  const int n_major = x_major ? nx_ : ny_, n_minor = x_major ? ny_ : nx_;
-  const double a_major = x_major ? s.x : s.y, a_minor = x_major ? s.y : s.x;
-  const int step = a_major > 0 ? 1 : -1;
-  const double slope = a_minor / std::abs(a_major);  // minor offset per major step (cells)
-  const double drop = cell_ * std::sqrt(1.0 + slope * slope) * tan_e;
-  auto at = [&](int major, int minor) -> std::size_t {
-    return x_major ? cell_index(major, minor) : cell_index(minor, major);
-  };
-  const int first = step > 0 ? n_major - 2 : 1;
-  for (int m = first; m >= 0 && m < n_major; m -= step) {
-    const int up = m + step;
-    for (int k = 0; k < n_minor; ++k) {
-      const double q = k + slope;
-      const int q0 = static_cast<int>(std::floor(q));
-      const double f = q - q0;
-      auto blocker = [&](int kk) -> double {
-        if (kk < 0 || kk >= n_minor) return kNoShadow;
-        const std::size_t idx = at(up, kk);
-        return std::max<double>(surface_[idx], shadow_[idx]);
-      };
-      const double b0 = blocker(q0), b1 = blocker(q0 + 1);
-      // Interpolate only between real blockers; next to the border take the one that exists.
-      double b;
-      if (b0 <= kNoShadow) {
-        b = f > 0.0 ? b1 : kNoShadow;
-      } else if (b1 <= kNoShadow) {
-        b = f < 1.0 ? b0 : kNoShadow;
-      } else {
-        b = b0 + (b1 - b0) * f;
-      }
-      shadow_[at(m, k)] = b <= kNoShadow ? kNoShadow : static_cast<float>(b - drop);
-    }
-  }
+  shadow_ = shadow_heights(surface_, nx_, ny_, cell_, lighting_.sun_dir(), lighting_.sun_on());
 }
 
 bool World::contains_xy(double x, double y) const {
@@ -446,7 +404,7 @@ glm::dvec3 World::cell_normal(int ix, int iy) const {
   return glm::normalize(glm::dvec3(-dzdx, -dzdy, 1.0));
 }
 
-Rgb World::wall_radiance(int ix, int iy, ColumnFace face, double z) const {
+glm::dvec3 World::face_normal(int ix, int iy, ColumnFace face) const {
   int nbx = ix, nby = iy;
   glm::dvec3 axis(0.0);
   switch (face) {
@@ -467,12 +425,17 @@ Rgb World::wall_radiance(int ix, int iy, ColumnFace face, double z) const {
       axis = {0, 1, 0};
       break;
     default:
-      return top_radiance(ix, iy);
+      return cell_normal(ix, iy);
   }
   const bool inside = nbx >= 0 && nby >= 0 && nbx < nx_ && nby < ny_;
   const double below = inside ? column_top(nbx, nby) : min_surface_;
-  const glm::dvec3 n = column_top(ix, iy) - below > cell_ ? axis : cell_normal(ix, iy);
-  return lighting_.surface_radiance(cell_albedo(ix, iy), n, z >= shadow_height(ix, iy));
+  return column_top(ix, iy) - below > cell_ ? axis : cell_normal(ix, iy);
+}
+
+Rgb World::wall_radiance(int ix, int iy, ColumnFace face, double z) const {
+  if (face == ColumnFace::Top || face == ColumnFace::Inside) return top_radiance(ix, iy);
+  return lighting_.surface_radiance(cell_albedo(ix, iy), face_normal(ix, iy, face),
+                                    z >= shadow_height(ix, iy));
 }
 
 std::uint64_t World::content_hash() const {
@@ -505,6 +468,20 @@ const WorldLandmarks& World::landmarks() const {
   // The cache is created with the world (allocate()); a moved-from world has none.
   std::call_once(landmarks_->once, [this] { landmarks_->landmarks = find_landmarks(*this); });
   return landmarks_->landmarks;
+}
+
+struct World::StartLighting {
+  std::once_flag once;
+  std::unique_ptr<LightingModel> model;
+  const LightingState* state = nullptr;
+};
+
+const LightingState& World::start_lighting() const {
+  std::call_once(start_lighting_->once, [this] {
+    start_lighting_->model = std::make_unique<LightingModel>(*this);
+    start_lighting_->state = &start_lighting_->model->state_at(0.0);
+  });
+  return *start_lighting_->state;
 }
 
 }  // namespace ambisim

@@ -30,6 +30,7 @@ namespace ambisim {
 enum class ColumnFace : std::uint8_t { Top = 0, WallNegX, WallPosX, WallNegY, WallPosY, Inside };
 
 struct WorldLandmarks;
+struct LightingState;
 
 class World {
  public:
@@ -70,6 +71,9 @@ class World {
   // The world's named places (landmarks.h), found on first use and kept (thread-safe): the
   // scans take a fraction of a second, and every run of a sweep asks.
   const WorldLandmarks& landmarks() const;
+  // The lighting at the start (time 0) when it is not the first model's: what renders of the
+  // world alone (a probe, a view) show. Made on first use and kept (thread-safe).
+  const LightingState& start_lighting() const;
   double road_width_m() const { return params_.road.width_m; }
 
   double far_ground_height() const { return min_surface_; }
@@ -83,6 +87,7 @@ class World {
     return static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx_) + ix;
   }
   float column_top(int ix, int iy) const { return surface_[cell_index(ix, iy)]; }
+  const std::vector<float>& surface_columns() const { return surface_; }
   float column_ground(int ix, int iy) const { return ground_[cell_index(ix, iy)]; }
   Biome cell_biome(int ix, int iy) const { return biome_[cell_index(ix, iy)]; }
   const Rgb& cell_albedo(int ix, int iy) const { return albedo_[cell_index(ix, iy)]; }
@@ -94,6 +99,10 @@ class World {
   // cliffs, cuttings, forest edges) are shaded with the axis normal; lower steps belong to a
   // smooth slope and use the cell's smooth normal.
   Rgb wall_radiance(int ix, int iy, ColumnFace face, double z) const;
+  // The shading normal of a face: the cell's terrain normal for its top (and for low walls,
+  // which belong to the slope), the wall's axis for a wall higher than a cell.
+  glm::dvec3 face_normal(int ix, int iy, ColumnFace face) const;
+  float far_ground_albedo() const { return far_albedo_; }
   const HeightPyramid& pyramid() const { return pyramid_; }
   float min_surface() const { return min_surface_; }
   float max_surface() const { return max_surface_; }
@@ -122,6 +131,8 @@ class World {
   Spline3 road_;
   struct LandmarkCache;
   std::shared_ptr<LandmarkCache> landmarks_;  // shared_ptr: World stays movable
+  struct StartLighting;
+  std::shared_ptr<StartLighting> start_lighting_;
 };
 
 }  // namespace ambisim

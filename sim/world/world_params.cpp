@@ -9,12 +9,6 @@ namespace {
 
 constexpr double kMaxCells = 67108864.0;  // 2^26
 
-Rgb read_rgb(ObjectReader& r, const char* key, const Rgb& fallback) {
-  // Stored as float: bounded far below FLT_MAX so that radiance stays finite.
-  const glm::dvec3 v = r.vec3(key, glm::dvec3(fallback), Range::closed(0.0, 1e6));
-  return Rgb(v);
-}
-
 TerrainParams parse_terrain(ObjectReader& r) {
   TerrainParams t;
   t.amplitude_m = r.number("amplitude_m", t.amplitude_m, Range::closed(0.0, 5000.0));
@@ -47,38 +41,6 @@ RoadParams parse_road(ObjectReader& r) {
   return p;
 }
 
-SunParams parse_sun(ObjectReader& r) {
-  SunParams s;
-  s.enabled = r.boolean("enabled", s.enabled);
-  s.elevation_deg = r.number("elevation_deg", s.elevation_deg, Range::closed(-90.0, 90.0));
-  s.azimuth_deg = r.number("azimuth_deg", s.azimuth_deg, Range::closed(-360.0, 360.0));
-  s.colour = read_rgb(r, "colour", s.colour);
-  s.radiance_ratio = r.number("radiance_ratio", s.radiance_ratio, Range::closed(0.0, 1e9));
-  s.disc_solid_angle_sr =
-      r.number("disc_solid_angle_sr", s.disc_solid_angle_sr, {0.0, 0.1, true, false});
-  r.finish();
-  return s;
-}
-
-SkyParams parse_sky(ObjectReader& r) {
-  SkyParams s;
-  s.uniform = r.boolean("uniform", s.uniform);
-  s.zenith = read_rgb(r, "zenith", s.zenith);
-  s.horizon = read_rgb(r, "horizon", s.horizon);
-  s.uniform_radiance = read_rgb(r, "uniform_radiance", s.uniform_radiance);
-  r.finish();
-  return s;
-}
-
-FogParams parse_fog(ObjectReader& r) {
-  FogParams f;
-  f.extinction_per_m = r.number("extinction_per_m", f.extinction_per_m, Range::closed(0.0, 1.0));
-  f.colour = read_rgb(r, "colour", f.colour);
-  f.sky_distance_m = r.number("sky_distance_m", f.sky_distance_m, Range::non_negative());
-  r.finish();
-  return f;
-}
-
 }  // namespace
 
 WorldParams parse_world_params(ObjectReader& r) {
@@ -103,7 +65,12 @@ WorldParams parse_world_params(ObjectReader& r) {
   if (auto o = r.optional_object("road")) w.road = parse_road(*o);
   if (auto o = r.optional_object("sun")) w.sun = parse_sun(*o);
   if (auto o = r.optional_object("sky")) w.sky = parse_sky(*o);
+  if (auto o = r.optional_object("clouds")) w.clouds = parse_clouds(*o, w.seed);
+  if (auto o = r.optional_object("lamps")) w.lamps = parse_lamps(*o);
   if (auto o = r.optional_object("fog")) w.fog = parse_fog(*o);
+  if (w.lamps.enabled && !w.road.enabled) {
+    r.fail("lamps", "street lamps stand along the road: /world/road/enabled is false");
+  }
   r.finish();
   return w;
 }

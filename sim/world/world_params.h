@@ -6,6 +6,7 @@
 #include <glm/vec2.hpp>
 
 #include "sim/colour/rgb.h"
+#include "sim/world/lighting_params.h"
 
 namespace ambisim {
 
@@ -36,29 +37,6 @@ struct RoadParams {
   double embankment_slope_deg = 33;
 };
 
-struct SunParams {
-  bool enabled = true;
-  double elevation_deg = 40.0;  // above the horizon, -90..90 (<= 0: no direct light)
-  double azimuth_deg = 200.0;   // compass: 0 = north (+y), 90 = east (+x)
-  Rgb colour{1.0f, 0.95f, 0.85f};
-  // Sun radiance / sky zenith radiance (luminance-weighted); thesis 10.2.3: about 1e5 at noon.
-  double radiance_ratio = 1.0e5;
-  double disc_solid_angle_sr = 6.8e-5;
-};
-
-struct SkyParams {
-  bool uniform = false;             // true: radiance `uniform_radiance` in every direction
-  Rgb zenith{0.25f, 0.45f, 1.0f};   // radiance straight up (O(1) units)
-  Rgb horizon{0.75f, 0.85f, 1.0f};  // radiance at and below the horizon
-  Rgb uniform_radiance{1.0f, 1.0f, 1.0f};
-};
-
-struct FogParams {
-  double extinction_per_m = 0.0;   // sigma; 0 = no fog
-  Rgb colour{0.7f, 0.75f, 0.8f};   // in-scattered radiance L_fog
-  double sky_distance_m = 2000.0;  // rays that escape to the sky are fogged over this length
-};
-
 struct WorldParams {
   std::uint64_t seed = 1;
   glm::dvec2 size_m{4096.0, 4096.0};  // extent east x north; multiples of cell_m
@@ -68,7 +46,11 @@ struct WorldParams {
   RoadParams road;
   SunParams sun;
   SkyParams sky;
+  CloudParams clouds;
+  LampParams lamps;
   FogParams fog;
+
+  LightingParams lighting() const { return {sun, sky, clouds, lamps, fog}; }
 };
 
 // Reads a "world" object. Every key is optional (defaults above); unknown keys and values out

@@ -1,5 +1,7 @@
 #include "sim/world/world_queries.h"
 
+#include "sim/world/lighting_model.h"
+
 namespace ambisim {
 
 TerrainQueries terrain_queries(const World& world) {
@@ -11,8 +13,16 @@ TerrainQueries terrain_queries(const World& world) {
   return q;
 }
 
-WorldQueries planner_world_queries(const World& world) {
+WorldQueries planner_world_queries(const World& world, LightingModel* lighting) {
   WorldQueries q;
+  if (lighting != nullptr) {
+    q.lighting = [lighting](double t) { return lighting->info_at(t); };
+    q.lighting_change_at = [lighting](const glm::dvec3& p, double t) {
+      return lighting->local_change_rate(p, t);
+    };
+    q.lighting_static = lighting->is_static();
+    q.has_lamps = lighting->lamps() != nullptr;
+  }
   q.ground_height = [&world](double x, double y) { return world.ground_height(x, y); };
   q.surface_height = [&world](double x, double y) { return world.surface_height(x, y); };
   q.road = world.road().empty() ? nullptr : &world.road();

@@ -8,6 +8,9 @@
 namespace ambisim {
 
 TerrainQueries terrain_queries(const World& world);
-WorldQueries planner_world_queries(const World& world);
+class LightingModel;
+
+// `lighting` (may be null: no lighting queries) must outlive the queries.
+WorldQueries planner_world_queries(const World& world, LightingModel* lighting = nullptr);
 
 }  // namespace ambisim

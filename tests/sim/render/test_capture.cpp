@@ -124,6 +124,7 @@ TEST_CASE("fog blends hits toward the fog colour with distance", "[capture]") {
   WorldParams p;
   p.size_m = {256.0, 256.0};
   p.seed = 4;
+  p.sky.model = SkyParams::Model::gradient;  // the first model: fog of a fixed radiance
   p.fog.extinction_per_m = 0.01;
   p.fog.colour = {0.5f, 0.5f, 0.5f};
   const World w(p);
