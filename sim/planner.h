@@ -56,6 +56,9 @@ struct WorldQueries {
   std::function<double(const glm::dvec3&, double)> lighting_change_at;
   bool lighting_static = true;  // nothing ever changes: lifetimes can be infinite
   bool has_lamps = false;       // the world has street lamps (lamp layers are worth capturing)
+  // The level's playable route: where the camera can go (a race track, a road, the designed
+  // path), as points about 10 m apart. What a team bakes its static lighting around.
+  std::vector<glm::dvec3> route;
 };
 
 struct FrameContext {

@@ -21,6 +21,7 @@ namespace ambisim {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+constexpr double kRouteSpacing = 10.0;  // m between points of WorldQueries::route
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
@@ -36,6 +37,24 @@ struct InFlight {
 };
 
 }  // namespace
+
+std::vector<glm::dvec3> camera_route(const ScenarioMotion& motion, double spacing_m) {
+  // The camera's positions over the run (a pure function of time), kept where it has moved at
+  // least spacing_m from the last point kept, and the last one.
+  std::vector<glm::dvec3> route;
+  const double end = motion.schedule().duration();
+  const int n = std::max(2, static_cast<int>(std::ceil(end / 0.05)) + 1);
+  double prev = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const double t = end * k / (n - 1);
+    const glm::dvec3 p = motion.camera_path().state(t, k == 0 ? t : prev).position;
+    prev = t;
+    if (route.empty() || glm::length(p - route.back()) >= spacing_m || k == n - 1) {
+      route.push_back(p);
+    }
+  }
+  return route;
+}
 
 ReceiverViewing receiver_viewing(const CameraView& view, const Receiver& r) {
   ReceiverViewing v;
@@ -90,7 +109,8 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
   CaptureBudget budget(scenario.budget);
   const int face_size = scenario.budget.face_size;
   LightingModel lighting(world);
-  const WorldQueries world_queries = planner_world_queries(world, &lighting);
+  WorldQueries world_queries = planner_world_queries(world, &lighting);
+  world_queries.route = camera_route(motion, kRouteSpacing);
   const auto ground = [&world](double x, double y) { return world.ground_height(x, y); };
 
   std::vector<InFlight> in_flight;

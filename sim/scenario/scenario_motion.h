@@ -35,6 +35,7 @@ class ScenarioMotion {
   std::int64_t frame_count() const { return schedule_.frame_count(); }
   const FrameSchedule& schedule() const { return schedule_; }
   const ViewSpec& view() const { return view_; }
+  const CameraPath& camera_path() const { return camera_; }
 
  private:
   TerrainQueries terrain_;
