@@ -13,9 +13,9 @@
 //                   (checked against the built world: check_scenario_world)             [0]
 //     direction     +1 along increasing road arc length, -1 against                     [1]
 //   recorded only:
-//     file          CSV telemetry time,x,y,z[,cut] (recorded_track.h), relative to the scenario
-//                   file; with it only "view" applies (no speed, at_end or cuts: the file
-//                   has its own)
+//     file          CSV telemetry time,x,y,z[,cut][,vx,vy,vz] (recorded_track.h), relative to the
+//                   scenario file; with it only "view" applies (no speed, at_end or cuts: the
+//                   file has its own)
 //   keyframes and road:
 //   speed_mps | speed_profile   see speed_profile.h (exactly one is required)
 //   at_end          "hold" (stop at the end) | "loop" (jump back to the start; a cut unless

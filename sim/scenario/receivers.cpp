@@ -15,9 +15,9 @@
 //                    "window_behind_m" >= 0 [200], "window_ahead_m" >= 0 [800],
 //                    "lane_offset_m" [road_width / 4], "height_m" >= 0 [1],
 //                    "max_live" 0..10000 [500], "size_m" (0, 1e3] [2]}
-//   recorded        absent = none; {"file" required: CSV tracks id,time,x,y,z relative to the
-//                    scenario file (recorded_track.h; at most 10000 alive at once),
-//                    "size_m" (0, 1e3] [2]}
+//   recorded        absent = none; {"file" required: CSV tracks id,time,x,y,z[,vx,vy,vz]
+//                    relative to the scenario file (recorded_track.h; at most 10000 alive at
+//                    once), "size_m" (0, 1e3] [2]}
 #include "sim/scenario/receivers.h"
 
 #include <algorithm>
