@@ -1,4 +1,6 @@
-// `ambisim run SCENARIO.json --planner NAME [--set key=value ...] --out DIR`: one run.
+// `ambisim run SCENARIO.json --planner NAME [--set key=value ...] --out DIR
+//  [--record-camera FILE.csv]`: one run; optionally the camera of every frame as a recording
+//  (time,x,y,z,cut) that a "recorded" camera replays.
 #include <unistd.h>
 
 #include <cstdio>
@@ -10,6 +12,7 @@
 #include "sim/run/reference_track.h"
 #include "sim/run/run_output.h"
 #include "sim/scenario/scenario.h"
+#include "sim/scenario/scenario_motion.h"
 #include "sim/world/world.h"
 
 namespace ambisim::cli {
@@ -23,6 +26,7 @@ struct RunOptions {
   std::string planner = kDefaultPlanner;
   std::vector<std::string> set;
   std::string out;
+  std::string record_camera;
   bool force = false;
   bool quiet = false;
 };
@@ -61,11 +65,16 @@ void run_run(const RunOptions& o) {
     }
   }
 
+  if (!o.record_camera.empty()) check_output_path(o.record_camera, ow);
+
   const World world(scenario.world);
   check_scenario_world(scenario, world);
   const auto reference = compute_reference_track(scenario, world);
   const RunResult result = simulate(scenario, world, *reference, *planner);
   write_run_output(o.out, scenario, {planner->name(), planner->params()}, result, ow);
+  if (!o.record_camera.empty()) {
+    write_text_atomically(o.record_camera, camera_csv(record_camera(scenario, world)), ow);
+  }
   if (!o.quiet) {
     const Summary& s = result.summary;
     std::printf(
@@ -90,6 +99,8 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--planner", o->planner, "planner name (see `ambisim planners`)");
   cmd->add_option("--set", o->set, "planner parameter key=value (repeatable)");
   cmd->add_option("--out", o->out, "output directory (result.json, frames.csv)")->required();
+  cmd->add_option("--record-camera", o->record_camera,
+                  "also write the camera of every frame as CSV (time,x,y,z,cut)");
   cmd->add_flag("--force", o->force, "overwrite an existing result");
   cmd->add_flag("--quiet", o->quiet, "print nothing on success");
   cmd->callback([o] { run_run(*o); });

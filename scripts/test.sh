@@ -8,6 +8,7 @@
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 ambisim_setup
+ambisim_install_packages "${AMBISIM_SLURM_PACKAGES[@]}"  # for tests/cli/slurm.sh
 jobs="$(nproc 2>/dev/null || echo 2)"
 
 if [ "${AMBISIM_SANITIZER_PASS:-1}" != "0" ]; then

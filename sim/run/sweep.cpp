@@ -249,6 +249,11 @@ std::vector<RunSpec> expand_sweep(const SweepSpec& spec) {
           for (double b : spec.budgets) {
             set_json_path(doc, "/budget/faces_per_frame", b, file);
             const Scenario variant = parse_scenario(doc, file);
+            if (v != 1.0 && variant.camera.type == CameraPathRecord::Type::recorded) {
+              throw InputError(
+                  spec.file, "/speed_scales",
+                  variant.name + " has a recorded camera: its speed cannot be scaled (only 1)");
+            }
             if (!safe_path_component(variant.name)) {
               throw InputError(file, "/name",
                                std::string("names the run directories: ") + kComponentRule);

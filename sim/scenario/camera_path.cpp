@@ -1,5 +1,5 @@
 // Camera path JSON ("camera" object). Units: metres, seconds, m/s. Defaults in brackets.
-//   type            "keyframes" | "road"                                        ["keyframes"]
+//   type            "keyframes" | "road" | "recorded"                           ["keyframes"]
 //   keyframes only:
 //     points        [[x, y, z], ...], >= 2 distinct points, |coordinates| <= 1e10; the spline
 //                   passes through them
@@ -12,6 +12,11 @@
 //     start_arc_length_m  road arc length where the camera starts, 0..road length
 //                   (checked against the built world: check_scenario_world)             [0]
 //     direction     +1 along increasing road arc length, -1 against                     [1]
+//   recorded only:
+//     file          CSV telemetry time,x,y,z[,cut][,vx,vy,vz] (recorded_track.h), relative to the
+//                   scenario file; with it only "view" applies (no speed, at_end or cuts: the
+//                   file has its own)
+//   keyframes and road:
 //   speed_mps | speed_profile   see speed_profile.h (exactly one is required)
 //   at_end          "hold" (stop at the end) | "loop" (jump back to the start; a cut unless
 //                   the course is closed)                                               ["hold"]
@@ -110,11 +115,29 @@ PeriodicCutRecord parse_periodic(ObjectReader& p) {
   return rec;
 }
 
+void parse_view(ObjectReader& r, CameraPathRecord& rec) {
+  if (auto v = r.optional_object("view")) {
+    rec.view.fov_deg = v->number("fov_deg", rec.view.fov_deg, {0.0, 180.0, true, true});
+    rec.view.aspect = v->number("aspect", rec.view.aspect, Range::closed(0.1, 10.0));
+    if (v->has("look_at")) {
+      rec.look_at = read_position(*v, "look_at", kMaxCoord, rec.look_at_landmark, 0);
+    }
+    v->finish();
+  }
+}
+
 }  // namespace
 
 CameraPathRecord parse_camera_path(ObjectReader& r) {
   CameraPathRecord rec;
-  const std::string type = r.choice("type", "keyframes", {"keyframes", "road"});
+  const std::string type = r.choice("type", "keyframes", {"keyframes", "road", "recorded"});
+  if (type == "recorded") {
+    rec.type = CameraPathRecord::Type::recorded;
+    rec.recorded = read_recorded_camera(r, "file");
+    parse_view(r, rec);
+    r.finish();
+    return rec;
+  }
   if (type == "keyframes") {
     rec.type = CameraPathRecord::Type::keyframes;
     rec.points = parse_points(r, "points", rec.point_landmarks);
@@ -147,14 +170,7 @@ CameraPathRecord parse_camera_path(ObjectReader& r) {
     }
   }
   if (auto p = r.optional_object("periodic_cut")) rec.periodic = parse_periodic(*p);
-  if (auto v = r.optional_object("view")) {
-    rec.view.fov_deg = v->number("fov_deg", rec.view.fov_deg, {0.0, 180.0, true, true});
-    rec.view.aspect = v->number("aspect", rec.view.aspect, Range::closed(0.1, 10.0));
-    if (v->has("look_at")) {
-      rec.look_at = read_position(*v, "look_at", kMaxCoord, rec.look_at_landmark, 0);
-    }
-    v->finish();
-  }
+  parse_view(r, rec);
   r.finish();
   return rec;
 }
@@ -183,6 +199,13 @@ CameraPath::CameraPath(const CameraPathRecord& record, const TerrainQueries& ter
       speed_(record.speed),
       cuts_(record.cuts),
       periodic_(record.periodic) {
+  if (type_ == CameraPathRecord::Type::recorded) {
+    if (!record.recorded) throw std::invalid_argument("a recorded camera path needs its samples");
+    recorded_ = record.recorded;
+    anchors_.push_back({0.0, 0.0});
+    anchors_complete_ = true;
+    return;
+  }
   if (type_ == CameraPathRecord::Type::keyframes) {
     std::vector<glm::dvec3> pts = record.points;
     if (record.z_above_ground) {
@@ -244,11 +267,13 @@ double CameraPath::nearest_u(const glm::dvec3& p) const {
 }
 
 glm::dvec3 CameraPath::course_point(double u) const {
+  if (type_ == CameraPathRecord::Type::recorded) return recorded_->track.positions().front();
   if (type_ == CameraPathRecord::Type::keyframes) return spline_.at(u);
   return lane_point(*road_, start_s_ + direction_ * u, direction_, lane_offset_, height_);
 }
 
 glm::dvec3 CameraPath::course_derivative(double u) const {
+  if (type_ == CameraPathRecord::Type::recorded) return glm::dvec3(0.0);
   if (type_ == CameraPathRecord::Type::keyframes) return spline_.tangent(u);
   // d/du = direction * d/ds.
   return static_cast<double>(direction_) *
@@ -280,6 +305,15 @@ std::size_t CameraPath::anchor_index(double time) const {
 CameraState CameraPath::state(double time, double previous_time) const {
   time = std::max(time, 0.0);
   previous_time = std::clamp(previous_time, 0.0, time);
+  if (type_ == CameraPathRecord::Type::recorded) {
+    const RecordedTrack::State at = recorded_->track.at(time);
+    CameraState s;
+    s.time = time;
+    s.position = at.position;
+    s.velocity = at.velocity;
+    s.cut = recorded_->track.cut_in(previous_time, time);
+    return s;
+  }
   const std::size_t k_prev = anchor_index(previous_time);
   const std::size_t k = anchor_index(time);
   CameraState s;

@@ -1,7 +1,9 @@
 #pragma once
 // Where the camera is at each moment: a keyframed spline or a lane of the world road, moved
-// along by a speed profile, with optional cuts (teleports). Evaluation is a pure function of
-// time (plus a cache of cut anchors), so frame rate never changes where the camera is.
+// along by a speed profile, with optional cuts (teleports); or a recorded flight replayed from
+// CSV telemetry (recorded_track.h). Evaluation is a pure function of time (plus a cache of cut
+// anchors), so frame rate never changes where the camera is.
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -10,6 +12,7 @@
 #include "sim/base/json_reader.h"
 #include "sim/metrics/view_weights.h"
 #include "sim/scenario/landmark_ref.h"
+#include "sim/scenario/recorded_track.h"
 #include "sim/scenario/speed_profile.h"
 #include "sim/world/spline.h"
 #include "sim/world/terrain_queries.h"
@@ -39,7 +42,7 @@ struct PeriodicCutRecord {
 };
 
 struct CameraPathRecord {
-  enum class Type { keyframes, road };
+  enum class Type { keyframes, road, recorded };
   enum class AtEnd { hold, loop };
   Type type = Type::keyframes;
   // keyframes
@@ -50,7 +53,10 @@ struct CameraPathRecord {
   double height_m = 1.5;
   double start_arc_length_m = 0.0;
   int direction = 1;
-  // both
+  // recorded: the samples read from the CSV file (shared by the copies of a scenario); none of
+  // the fields below but the view apply
+  std::shared_ptr<const RecordedCamera> recorded;
+  // keyframes and road
   SpeedProfileRecord speed;
   AtEnd at_end = AtEnd::hold;
   std::vector<CutRecord> cuts;  // sorted by time, strictly increasing
@@ -83,7 +89,8 @@ class CameraPath {
   CameraState state(double time, double previous_time) const;
 
   // The course: the distance coordinate u in [0, course_length()] from where the path starts,
-  // in its direction of travel (keyframes: spline arc length; road: metres from the start).
+  // in its direction of travel (keyframes: spline arc length; road: metres from the start;
+  // recorded: no course, a length of 0 at the first sample).
   double course_length() const { return course_length_; }
   glm::dvec3 course_point(double u) const;
   // d(course_point)/du: the unit tangent for keyframes; for an offset lane, slightly off unit.
@@ -104,6 +111,7 @@ class CameraPath {
   CameraPathRecord::AtEnd at_end_;
   Spline3 spline_;
   const Spline3* road_ = nullptr;
+  std::shared_ptr<const RecordedCamera> recorded_;
   double lane_offset_ = 0.0;
   double height_ = 0.0;
   double start_s_ = 0.0;

@@ -15,6 +15,9 @@
 //                    "window_behind_m" >= 0 [200], "window_ahead_m" >= 0 [800],
 //                    "lane_offset_m" [road_width / 4], "height_m" >= 0 [1],
 //                    "max_live" 0..10000 [500], "size_m" (0, 1e3] [2]}
+//   recorded        absent = none; {"file" required: CSV tracks id,time,x,y,z[,vx,vy,vz]
+//                    relative to the scenario file (recorded_track.h; at most 10000 alive at
+//                    once), "size_m" (0, 1e3] [2]}
 #include "sim/scenario/receivers.h"
 
 #include <algorithm>
@@ -60,6 +63,8 @@ const char* receiver_kind_name(ReceiverKind kind) {
       return "lod_prop";
     case ReceiverKind::traffic:
       return "traffic";
+    case ReceiverKind::recorded:
+      return "recorded";
   }
   return "?";
 }
@@ -113,6 +118,13 @@ ReceiversRecord parse_receivers(ObjectReader& r) {
     t->finish();
     rec.traffic = tr;
   }
+  if (auto c = r.optional_object("recorded")) {
+    RecordedReceiversRecord rr;
+    rr.tracks = read_recorded_receivers(*c, "file", kMaxLive);
+    rr.size_m = c->number("size_m", rr.size_m, kSize);
+    c->finish();
+    rec.recorded = rr;
+  }
   r.finish();
   return rec;
 }
@@ -136,6 +148,9 @@ ReceiverSet::ReceiverSet(const ReceiversRecord& record, const TerrainQueries& te
       throw std::invalid_argument("traffic needs a road");
     }
     lane_offset_ = rec_.traffic->lane_offset_m.value_or(0.25 * terrain_.road_width);
+  }
+  if (rec_.recorded && !rec_.recorded->tracks) {
+    throw std::invalid_argument("recorded receivers need their tracks");
   }
 }
 
@@ -171,6 +186,7 @@ void ReceiverSet::update(double time, const CameraState& camera) {
   if (rec_.camera_object.enabled) update_camera_object(time, camera);
   if (rec_.lod_props) update_lod_props(time, camera);
   if (rec_.traffic) update_traffic(time, camera);
+  if (rec_.recorded) update_recorded(time);
   last_time_ = time;
 }
 
@@ -305,6 +321,44 @@ void ReceiverSet::update_traffic(double time, const CameraState& camera) {
     r.size_m = T.size_m;
     place(r);
     ++live_cars;
+  }
+}
+
+void ReceiverSet::update_recorded(double time) {
+  const RecordedReceivers& R = *rec_.recorded->tracks;
+  // Despawn after the last sample (alive through it), then move the others.
+  auto over = [&](const Receiver& r) {
+    return r.kind == ReceiverKind::recorded && time > R.tracks[r.track].last_time();
+  };
+  for (auto& r : live_) {
+    if (over(r)) {
+      gone_.push_back(r);
+      gone_.back().despawn_time = time;
+      ++counters_.despawned[kind_index(ReceiverKind::recorded)];
+    }
+  }
+  live_.erase(std::remove_if(live_.begin(), live_.end(), over), live_.end());
+  for (auto& r : live_) {
+    if (r.kind != ReceiverKind::recorded) continue;
+    const RecordedTrack::State s = R.tracks[r.track].at(time);
+    r.position = s.position;
+    r.velocity = s.velocity;
+  }
+  // Spawn in track order (by first sample time): every track whose first sample has come.
+  for (; next_track_ < R.tracks.size() && R.tracks[next_track_].first_time() <= time;
+       ++next_track_) {
+    const RecordedTrack& track = R.tracks[next_track_];
+    if (time > track.last_time()) {
+      ++counters_.recorded_missed;  // its whole life fell between two frames
+      continue;
+    }
+    Receiver& r = spawn(ReceiverKind::recorded, time);
+    r.track = next_track_;
+    r.size_m = rec_.recorded->size_m;
+    r.despawn_time = track.last_time();
+    const RecordedTrack::State s = track.at(time);
+    r.position = s.position;
+    r.velocity = s.velocity;
   }
 }
 

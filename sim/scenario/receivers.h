@@ -1,11 +1,14 @@
 #pragma once
 // Receivers: objects the planner's lookup lights (never part of captures). The camera's own
 // object plus two spawners from the thesis (7.5.1): props appearing at a LOD switch near a
-// forest edge (50 per second), and motorway traffic on both carriageways (10 per second).
+// forest edge (50 per second), and motorway traffic on both carriageways (10 per second); and
+// receivers replayed from CSV tracks (recorded_track.h), each alive from its first to its last
+// sample.
 // Spawning is at a deterministic rate (a count, not a random process); positions and lanes
 // come from a counter-based hash of (seed, spawner, spawn index), so the same seed and the
 // same frame times give the same receivers, independent of anything else.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,11 +18,13 @@
 #include "sim/base/json_reader.h"
 #include "sim/scenario/camera_path.h"
 #include "sim/scenario/landmark_ref.h"
+#include "sim/scenario/recorded_track.h"
 #include "sim/world/terrain_queries.h"
 
 namespace ambisim {
 
-enum class ReceiverKind { camera_object, lod_prop, traffic };
+enum class ReceiverKind { camera_object, lod_prop, traffic, recorded };
+inline constexpr int kReceiverKinds = 4;
 const char* receiver_kind_name(ReceiverKind kind);
 
 struct Receiver {
@@ -34,6 +39,7 @@ struct Receiver {
   double road_s0 = 0.0;
   int lane_direction = 0;
   double road_speed = 0.0;  // traffic: this vehicle's speed along the road (m/s)
+  std::size_t track = 0;    // recorded: index into RecordedReceivers::tracks
 };
 
 struct CameraObjectRecord {
@@ -79,11 +85,17 @@ struct TrafficRecord {
   double size_m = 2.0;  // as seen by the player (a car)
 };
 
+struct RecordedReceiversRecord {
+  std::shared_ptr<const RecordedReceivers> tracks;  // read from the CSV file
+  double size_m = 2.0;                              // as seen by the player, every receiver
+};
+
 struct ReceiversRecord {
   std::uint64_t seed = 1;
   CameraObjectRecord camera_object;
   std::optional<LodPropsRecord> lod_props;
   std::optional<TrafficRecord> traffic;
+  std::optional<RecordedReceiversRecord> recorded;
 };
 
 // Reads a "receivers" object (schema in receivers.cpp); calls finish().
@@ -94,9 +106,11 @@ void resolve_receiver_landmarks(ReceiversRecord& record, const WorldLandmarks& l
                                 const std::string& file);
 
 struct ReceiverCounters {
-  std::int64_t spawned[3] = {0, 0, 0};  // by ReceiverKind
-  std::int64_t despawned[3] = {0, 0, 0};
-  std::int64_t suppressed[3] = {0, 0, 0};  // due by rate but over max_live
+  std::int64_t spawned[kReceiverKinds] = {};  // by ReceiverKind
+  std::int64_t despawned[kReceiverKinds] = {};
+  std::int64_t suppressed[kReceiverKinds] = {};  // due by rate but over max_live
+  // Recorded tracks whose whole life fell between two frames: never seen.
+  std::int64_t recorded_missed = 0;
 };
 
 class ReceiverSet {
@@ -121,6 +135,7 @@ class ReceiverSet {
   double stand_height(double x, double y) const;
   void update_lod_props(double time, const CameraState& camera);
   void update_traffic(double time, const CameraState& camera);
+  void update_recorded(double time);
   Receiver& spawn(ReceiverKind kind, double time);
   std::int64_t live_count(ReceiverKind kind) const;
   double uniform(std::uint64_t stream, std::int64_t index, int component) const;
@@ -143,6 +158,7 @@ class ReceiverSet {
   std::int64_t lod_emitted_ = 0;
   std::int64_t traffic_emitted_ = 0;
   int camera_road_dir_ = 1;
+  std::size_t next_track_ = 0;  // recorded: the first track not yet spawned (or missed)
 };
 
 }  // namespace ambisim

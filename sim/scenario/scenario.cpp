@@ -22,6 +22,16 @@ std::uint64_t hash_json(const nlohmann::json& j) {
   return h.value();
 }
 
+// The recordings a scenario reads (CSV files): their contents are part of its fingerprint, so a
+// changed file changes the hash even though the document naming it did not change.
+std::uint64_t with_recordings(std::uint64_t h, const Scenario& s) {
+  if (s.camera.recorded) h = hash_combine(h, s.camera.recorded->source.content_hash);
+  if (s.receivers.recorded && s.receivers.recorded->tracks) {
+    h = hash_combine(h, s.receivers.recorded->tracks->source.content_hash);
+  }
+  return h;
+}
+
 ReferenceSettings parse_reference(ObjectReader& r) {
   ReferenceSettings s;
   s.face_size = r.integer("face_size", s.face_size, Range::closed(4, 256));
@@ -39,14 +49,14 @@ std::string hex64(std::uint64_t v) {
   return buf;
 }
 
-std::uint64_t Scenario::hash() const { return hash_json(document); }
+std::uint64_t Scenario::hash() const { return with_recordings(hash_json(document), *this); }
 
 std::uint64_t Scenario::reference_hash() const {
   nlohmann::json d = document;
   d.erase("budget");
   d.erase("name");
   d.erase("description");
-  return hash_json(d);
+  return with_recordings(hash_json(d), *this);
 }
 
 Scenario parse_scenario(const nlohmann::json& document, const std::string& file) {

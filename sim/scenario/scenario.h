@@ -39,7 +39,8 @@ struct Scenario {
   MetricSettings metrics;
   ReferenceSettings reference;
 
-  // Fingerprint of the whole document (any change in any section changes it).
+  // Fingerprint of the whole document (any change in any section changes it) and of the
+  // contents of the CSV recordings it names.
   std::uint64_t hash() const;
   // Fingerprint of what the reference depends on: everything but the capture budget. Runs
   // that differ only in budget or planner share one reference.

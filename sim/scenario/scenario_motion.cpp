@@ -32,4 +32,15 @@ bool ScenarioMotion::next() {
   return true;
 }
 
+std::vector<CameraSample> record_camera(const Scenario& scenario, const World& world) {
+  ScenarioMotion motion(scenario, world);
+  std::vector<CameraSample> out;
+  out.reserve(static_cast<std::size_t>(motion.frame_count()));
+  while (motion.next()) {
+    const CameraState& c = motion.current().camera;
+    out.push_back({motion.current().frame.time, c.position, c.velocity, c.cut});
+  }
+  return out;
+}
+
 }  // namespace ambisim

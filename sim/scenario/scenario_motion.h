@@ -7,6 +7,7 @@
 #include "sim/scenario/camera_path.h"
 #include "sim/scenario/frame_schedule.h"
 #include "sim/scenario/receivers.h"
+#include "sim/scenario/recorded_track.h"
 #include "sim/scenario/scenario.h"
 #include "sim/world/terrain_queries.h"
 
@@ -48,5 +49,10 @@ class ScenarioMotion {
   ViewSpec view_;
   std::optional<glm::dvec3> look_at_;
 };
+
+// The camera of every frame of `scenario` (time, position, velocity, cut), as a recording:
+// camera_csv() of it replays through a "recorded" camera with the same position, velocity and
+// cut at every frame time.
+std::vector<CameraSample> record_camera(const Scenario& scenario, const World& world);
 
 }  // namespace ambisim

@@ -175,6 +175,63 @@ run_error road_disabled "road_disabled.json: /camera/type: \"road\" needs the wo
 run_error traffic_without_road "traffic_without_road.json: /receivers/traffic: needs the world's road"
 run_error start_beyond_road "start_beyond_road.json: /camera/start_arc_length_m: is beyond the end of the road"
 
+# ---------------------------------------------------------------- recorded telemetry (CSV next to the scenario)
+# recorded NAME CAMERA_CSV [RECEIVERS_CSV]: $tmp/NAME.json replays $tmp/NAME.csv (and the
+# receivers in $tmp/NAME.cars.csv); printf-style escapes in the texts.
+recorded() {
+  printf "$2" >"$tmp/$1.csv"
+  local cars=""
+  if [ $# -ge 3 ]; then
+    printf "$3" >"$tmp/$1.cars.csv"
+    cars="d['receivers']['recorded'] = {'file': '$1.cars.csv'}"
+  fi
+  mutate "$1" "d['camera'] = {'type': 'recorded', 'file': '$1.csv'}; $cars"
+}
+rec_ok='time,x,y,z\n0,100,200,90\n1,110,200,90\n'
+recorded rec_empty ''
+recorded rec_header_only 'time,x,y,z\n'
+recorded rec_no_header '0,100,200,90\n1,110,200,90\n'
+recorded rec_missing_column 'time,x,y\n0,100,200\n'
+recorded rec_unknown_column 'time,x,y,z,speed\n0,100,200,90,3\n'
+recorded rec_not_number 'time,x,y,z\n0,100,200,90\n1,110,abc,90\n'
+recorded rec_non_monotonic 'time,x,y,z\n0,100,200,90\n1,110,200,90\n1,120,200,90\n'
+recorded rec_bad_cut 'time,x,y,z,cut\n0,100,200,90,0\n1,110,200,90,yes\n'
+recorded rec_field_count 'time,x,y,z\n0,100,200,90\n1,110,200\n'
+recorded rec_half_velocity 'time,x,y,z,vx\n0,100,200,90,1\n'
+recorded rec_cars_missing_id "$rec_ok" 'time,x,y,z\n0,100,200,90\n'
+recorded rec_cars_non_monotonic "$rec_ok" 'id,time,x,y,z\nbus,0,100,200,90\nvan,0,1,2,3\nbus,0,101,200,90\n'
+recorded rec_cars_empty "$rec_ok" ''
+recorded rec_speed_key "$rec_ok"
+mutate rec_speed_key 'd["camera"] = {"type": "recorded", "file": "rec_speed_key.csv", "speed_mps": 3}'
+recorded rec_cars_size "$rec_ok" 'id,time,x,y,z\nbus,0,100,200,90\n'
+mutate rec_cars_size 'd["camera"] = {"type": "recorded", "file": "rec_cars_size.csv"}; d["receivers"]["recorded"] = {"file": "rec_cars_size.cars.csv", "size_m": 0}'
+mutate rec_missing_file 'd["camera"] = {"type": "recorded", "file": "nope.csv"}'
+mutate rec_directory 'd["camera"] = {"type": "recorded", "file": "."}'
+run_error rec_missing_file "rec_missing_file.json: /camera/file: no such file: $tmp/nope.csv"
+run_error rec_directory "rec_directory.json: /camera/file: is a directory, not a CSV file"
+run_error rec_empty "rec_empty.csv: is empty; expected a header line time,x,y,z[,cut][,vx,vy,vz] and samples"
+run_error rec_header_only "rec_header_only.csv: line 1: a header and no samples"
+run_error rec_no_header "rec_no_header.csv: line 1: expected a header line time,x,y,z[,cut][,vx,vy,vz], got numbers"
+run_error rec_missing_column "rec_missing_column.csv: line 1: missing column 'z'"
+run_error rec_unknown_column "rec_unknown_column.csv: line 1: unknown column 'speed'; valid columns: time, x, y, z, cut, vx, vy, vz"
+run_error rec_not_number "rec_not_number.csv: line 3: y: not a number: 'abc'"
+run_error rec_non_monotonic "rec_non_monotonic.csv: line 4: time 1 is not after the previous sample's 1"
+run_error rec_bad_cut "rec_bad_cut.csv: line 3: cut: not a number: 'yes'"
+run_error rec_field_count "rec_field_count.csv: line 3: has 3 fields, the header has 4"
+run_error rec_half_velocity "rec_half_velocity.csv: line 1: missing column 'vy'; a velocity needs all of vx, vy, vz"
+run_error rec_cars_missing_id "rec_cars_missing_id.cars.csv: line 1: missing column 'id'"
+run_error rec_cars_non_monotonic "rec_cars_non_monotonic.cars.csv: line 4: time 0 is not after the previous sample's 0 of id bus"
+run_error rec_cars_empty "rec_cars_empty.cars.csv: is empty; expected a header line id,time,x,y,z[,vx,vy,vz]"
+run_error rec_speed_key "rec_speed_key.json: /camera/speed_mps: unknown key; valid keys: file, type, view"
+run_error rec_cars_size "rec_cars_size.json: /receivers/recorded/size_m: must be > 0, got 0"
+mutate rec_good 'd["camera"] = {"type": "recorded", "file": "rec_good.csv"}'
+printf "$rec_ok" >"$tmp/rec_good.csv"
+printf '{"scenarios": ["rec_good.json"], "planners": ["constant"], "speed_scales": [1, 2]}' >"$tmp/rec_speed_scales.sweep.json"
+expect_error rec_sweep_speed_scales "rec_speed_scales.sweep.json: /speed_scales: small_drive has a recorded camera: its speed cannot be scaled" "$tmp/sout_rec_speed_scales" -- sweep "$tmp/rec_speed_scales.sweep.json" --out "$tmp/sout_rec_speed_scales" -j1
+expect_error record_camera_no_dir "nodir/flight.csv: directory does not exist" "$tmp/out_record_no_dir" -- run "$good" --planner constant --out "$tmp/out_record_no_dir" --record-camera "$tmp/nodir/flight.csv"
+printf 'keep me\n' >"$tmp/kept_flight.csv"
+expect_error record_camera_exists "kept_flight.csv: already exists (use --force" "$tmp/kept_flight.csv" -- run "$good" --planner constant --out "$tmp/out_record_exists" --record-camera "$tmp/kept_flight.csv"
+
 # ---------------------------------------------------------------- planners and the command line
 expect_error unknown_planner "valid planners: oracle" "$tmp/out_unknown_planner" -- run "$good" --planner octopus --out "$tmp/out_unknown_planner"
 expect_error unknown_param "valid parameters" "$tmp/out_unknown_param" -- run "$good" --planner nearest --set spacing=3 --out "$tmp/out_unknown_param"
