@@ -8,6 +8,7 @@
 #include "policies/baselines/nearest_probe.h"
 #include "policies/baselines/oracle.h"
 #include "policies/baselines/per_object.h"
+#include "policies/baselines/relit.h"
 #include "policies/baselines/scrolling_grid.h"
 #include "policies/thesis/octree.h"
 #include "policies/thesis/shgraph.h"
@@ -26,6 +27,7 @@ const std::vector<PlannerInfo>& planner_catalogue() {
       NearestProbePlanner::info(),
       PerObjectPlanner::info(),
       ScrollingGridPlanner::info(),
+      RelitPlanner::info(),
       OctreePlanner::info(),
       OctreePlanner::vp_info(),
       ShGraphPlanner::info(),

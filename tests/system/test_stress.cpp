@@ -103,7 +103,7 @@ struct Variant {
   nlohmann::json params = nlohmann::json::object();
 };
 
-// The 13 registered planners, plus, on the baseline, lifetime_s at 1 ms and 1e9 s (as good as
+// Every registered planner, plus, on the baseline, lifetime_s at 1 ms and 1e9 s (as good as
 // 0 and unlimited: the range is > 0) for every planner that has it (the octrees with
 // retention=lifetime, which is what makes them use it).
 std::vector<Variant> variants(const std::string& scenario) {
