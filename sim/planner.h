@@ -38,8 +38,13 @@ struct LightingInfo {
   Sh9Rgb sky_sh;             // the sky's radiance (clouds at their mean cover), zero below
   double lamp_level = 0.0;   // street lamps: 0 off, 1 on
   // How fast the lighting changes anywhere (1/s): the largest relative rate of the sun's and
-  // the sky's brightness, the sun's angular speed (rad/s), the fog's, and 1/s around a lamp
-  // switch. Cloud drift is local: WorldQueries::lighting_change_at.
+  // the sky's brightness, the sun's angular speed (rad/s) and the fog's density...
+  double sun_sky_change_rate = 0.0;
+  // ... and 1/s within 0.5 s of a lamp switch (a switch changes the light near the lamps by
+  // about all of the lamps' share: drift integrates to 1 over the switch)...
+  double lamp_change_rate = 0.0;
+  // ... and the larger of the two: the thesis' "maximum rate at which the light can change".
+  // Cloud drift is local: WorldQueries::lighting_change_at.
   double change_rate = 0.0;
 };
 
@@ -53,9 +58,15 @@ struct WorldQueries {
   // The lighting at a time (the frame's own time, or any other: an engine knows its time-of-day
   // schedule); and how fast it changes at a point (the global rate and the local cloud drift).
   std::function<LightingInfo(double)> lighting;
+  // The local rate at a point without the lamps (the sun's, the sky's, the fog's and the cloud
+  // shadows drifting over it; 1/s): LightingInfo::sun_sky_change_rate or more.
   std::function<double(const glm::dvec3&, double)> lighting_change_at;
   bool lighting_static = true;  // nothing ever changes: lifetimes can be infinite
   bool has_lamps = false;       // the world has street lamps (lamp layers are worth capturing)
+  // Where the lamps stand and how far their light reaches across the ground (an engine knows
+  // its lights and their attenuation ranges).
+  std::vector<glm::dvec3> lamp_positions;
+  double lamp_reach_m = 0.0;
   // The level's playable route: where the camera can go (a race track, a road, the designed
   // path), as points about 10 m apart. What a team bakes its static lighting around.
   std::vector<glm::dvec3> route;

@@ -19,7 +19,15 @@
 //   large change spread over more frames stays under the visible step per frame instead of
 //   popping on every frame of a short fade; probes leave by fading out over fade_s;
 // - places probes closer together where a new probe disagrees with what its neighbours
-//   predicted (the colour changes fast there: appendix B's untried idea).
+//   predicted (the colour changes fast there: appendix B's untried idea);
+// - refreshes by expected error when the light changes: each probe integrates how fast the
+//   world says the light changes where it stands (the sun and sky everywhere, cloud shadows
+//   drifting over it, lamps switching within their reach) into its expected relative error, its
+//   drift; a probe whose drift passes refresh_drift competes for the budget with the objects'
+//   need, the most stale first, and its new value fades in over the old one in place (the
+//   interpolation pattern does not change);
+// - near street lamps it captures the lamps' light as a second, additive set scaled by the
+//   lamps' current state (thesis 7.5.3), so a lamp switching costs no recapture.
 #include <cstdint>
 #include <map>
 #include <vector>
@@ -63,14 +71,25 @@ class DemandPlanner final : public Planner {
     double spacing = 0;  // the spacing it was placed for
     double detail = 1;   // < 1 where the colour changes fast: neighbours come closer
     double data_time = 0;
-    double fade_in = 0;          // its fade-in duration (0 = at once)
-    double fade_in_start = -1;   // < 0: not started (starts at the first update after delivery)
-    double fade_out_start = -1;  // >= 0: leaving
+    double fade_in = 0;           // its fade-in duration (0 = at once)
+    double fade_in_start = -1;    // < 0: not started (starts at the first update after delivery)
+    double fade_out_start = -1;   // >= 0: leaving
+    bool weight_fades_in = true;  // false after a refresh: only the value fades
+    double drift = 0;             // expected relative error since its data was captured
+    double sensitivity = 1;       // its light's change over the world's reported rate (learnt)
+    Rgb light{1.0f};              // the scene's light level when it was captured (rescale)
+    bool refreshing = false;      // a refresh capture for it is planned or in flight
+    bool near_lamps = false;      // within the lamps' reach: their switching makes it stale
+    bool has_lamps = false;       // holds a lamp layer
+    Sh9Rgb sh_lamps;              // the lamps at full power (as stored)
   };
   struct Pending {
     glm::dvec3 position{0.0};
     double spacing = 0;
     double requested_time = 0;
+    std::uint64_t refresh_of = 0;  // the probe this capture refreshes (0: a new probe)
+    double drift_at_request = 0;   // that probe's drift when the refresh was requested
+    Rgb light{1.0f};               // the scene's light level when it was requested
   };
 
   // How far a probe's fade-in has come, in [0, 1].
@@ -83,6 +102,15 @@ class DemandPlanner final : public Planner {
   bool interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* meta) const;
   // Distance from c to the nearest probe or pending capture, and the local detail factor.
   double nearest_distance(const glm::dvec3& c, double* detail) const;
+  // The probe's value at the lamps' current level (its lamp layer added).
+  Sh9Rgb current(const Probe& q) const;
+  // What the probe shows now: current() as it fades in from what was shown before.
+  Sh9Rgb shown(const Probe& q) const;
+  // Within the reach of a street lamp (horizontally, with a probe spacing to spare).
+  bool near_lamps(const glm::dvec3& p) const;
+  // Whether a capture at p renders a lamp layer.
+  bool wants_lamp_layer(const glm::dvec3& p) const;
+  Probe* find_probe(std::uint64_t tag);
   glm::dvec3 capture_point(const FrameContext& ctx, const glm::dvec3& p) const;
 
   PlannerParams params_;
@@ -101,7 +129,20 @@ class DemandPlanner final : public Planner {
   double fade_rate_;
   double fade_max_s_;
   double adapt_de_;
+  bool refresh_by_error_;
+  double refresh_drift_;
+  bool rescale_;
+  bool learn_;
+  bool lamp_layer_;  // the parameter: lamp layers where the world has lamps
   Sh9Rgb default_sh_;
+
+  // The world's lamps (from the first frame's context).
+  bool world_known_ = false;
+  std::vector<glm::dvec3> lamps_;
+  double lamp_reach_m_ = 0.0;
+  bool lamp_layers_ = false;  // captures near lamps render a lamp layer
+  double lamp_level_ = 0.0;
+  Rgb light_now_{1.0f};  // the scene's light level now (LightingInfo's sun and sky)
 
   double now_ = 0.0;
   double budget_scale_ = 1.0;  // near spacing factor from the budget (set_budget)

@@ -224,14 +224,23 @@ LightingInfo LightingModel::info_at(double t) {
     const double m = 0.5 * (std::abs(x0) + std::abs(x1));
     return m > 1e-12 ? std::abs(x1 - x0) / (m * span) : 0.0;
   };
-  // The horizontal illuminance (a uniform sky of the zenith's luminance plus the sun).
-  const double light0 = kPi * a.sky_zenith + a.sun * std::max(a.sun_dir.z, 0.0);
-  const double light1 = kPi * b.sky_zenith + b.sun * std::max(b.sun_dir.z, 0.0);
-  double rate = std::max(rel(light0, light1), rel(a.sun, b.sun));
+  // The illuminance on a horizontal surface and on a vertical one facing the sun (a uniform sky
+  // of the zenith's luminance plus the sun): the relative rate of the total a surface receives,
+  // not of the sun alone, which near the horizon dims fast while the sky still lights the
+  // scene (the sun's own rate overstated the change of probes at 4 deg elevation by 7x).
+  const auto horizontal = [](const Scalars& x) {
+    return kPi * x.sky_zenith + x.sun * std::max(x.sun_dir.z, 0.0);
+  };
+  const auto facing_sun = [](const Scalars& x) {
+    const double cos_el = std::sqrt(std::max(0.0, 1.0 - x.sun_dir.z * x.sun_dir.z));
+    return 0.5 * kPi * x.sky_zenith + x.sun * (x.sun_dir.z > 0.0 ? cos_el : 0.0);
+  };
+  double rate = std::max(rel(horizontal(a), horizontal(b)), rel(facing_sun(a), facing_sun(b)));
   rate = std::max(rate, std::acos(std::clamp(glm::dot(a.sun_dir, b.sun_dir), -1.0, 1.0)) / span);
   rate = std::max(rate, rel(a.fog_density, b.fog_density));
-  if (a.lamp_level != b.lamp_level) rate = std::max(rate, 1.0 / span);
-  info.change_rate = rate;
+  info.sun_sky_change_rate = rate;
+  info.lamp_change_rate = a.lamp_level != b.lamp_level ? 1.0 / span : 0.0;
+  info.change_rate = std::max(info.sun_sky_change_rate, info.lamp_change_rate);
   info_ = info;
   info_time_ = t;
   have_info_ = true;
@@ -240,7 +249,7 @@ LightingInfo LightingModel::info_at(double t) {
 
 double LightingModel::local_change_rate(const glm::dvec3& p, double t) {
   const LightingInfo info = info_at(t);
-  double rate = info.change_rate;
+  double rate = info.sun_sky_change_rate;
   if (clouds_ && info.sun_on) rate = std::max(rate, clouds_->change_rate(p, info.sun_dir, t));
   return rate;
 }

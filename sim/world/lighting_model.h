@@ -82,8 +82,8 @@ class LightingModel {
   SunShadows::Sun sun_at(double t, double* apparent_elevation_deg = nullptr) const;
   // What a planner may know at t (planner.h). Does not move the state's shadows.
   LightingInfo info_at(double t);
-  // How fast the light changes at a ground point p at time t (1/s): the global rate plus the
-  // cloud shadows' drift there.
+  // How fast the light changes at a ground point p at time t (1/s), lamps aside: the sun's, the
+  // sky's and the fog's rate, or the cloud shadows' drift there if faster.
   double local_change_rate(const glm::dvec3& p, double t);
 
   const CloudLayer* clouds() const { return clouds_.get(); }

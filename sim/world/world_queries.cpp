@@ -22,6 +22,10 @@ WorldQueries planner_world_queries(const World& world, LightingModel* lighting) 
     };
     q.lighting_static = lighting->is_static();
     q.has_lamps = lighting->lamps() != nullptr;
+    if (q.has_lamps) {
+      q.lamp_positions = lighting->lamps()->positions();
+      q.lamp_reach_m = lighting->lamps()->reach_m();
+    }
   }
   q.ground_height = [&world](double x, double y) { return world.ground_height(x, y); };
   q.surface_height = [&world](double x, double y) { return world.surface_height(x, y); };

@@ -29,12 +29,14 @@ std::vector<Scenario> short_scenarios(double seconds, bool with_small_drive) {
   return out;
 }
 
-const World& world_for(const WorldParams& p) {
+const World& world_for(const Scenario& sc) {
   static std::map<std::string, std::unique_ptr<World>> cache;
   const std::string key =
-      nlohmann::json{{"seed", p.seed}, {"size", {p.size_m.x, p.size_m.y}}}.dump();
+      nlohmann::json{{"seed", sc.world.seed},
+                     {"world", sc.document.value("world", nlohmann::json::object())}}
+          .dump();
   auto& slot = cache[key];
-  if (!slot) slot = std::make_unique<World>(p);
+  if (!slot) slot = std::make_unique<World>(sc.world);
   return *slot;
 }
 

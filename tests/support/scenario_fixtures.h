@@ -18,8 +18,10 @@ inline const std::string kSmallDrive =
 // 8x8 reference on a 0.1 s grid; tests/data/small_drive.json appended when asked.
 std::vector<Scenario> short_scenarios(double seconds, bool with_small_drive = false);
 
-// The world of `p`, built once per (seed, size) for the whole test binary.
-const World& world_for(const WorldParams& p);
+// The world of a scenario, built once per world description for the whole test binary: keyed
+// by its whole "world" section and its seed (a World carries its terrain and its lighting,
+// so two scenarios share one only when both are the same).
+const World& world_for(const Scenario& sc);
 
 // tests/data/small_drive.json with its world and its full (every-frame) reference.
 struct SmallDrive {

@@ -109,7 +109,7 @@ MotionDiff compare_motion(const Scenario& a, const Scenario& b, const World& wor
 
 TEST_CASE("a recorded scripted camera replays to the same run, byte for byte", "[recorded]") {
   const Scenario scripted = scripted_scenario();
-  const World& world = test::world_for(scripted.world);
+  const World& world = test::world_for(scripted);
   const Replay replay(scripted, camera_csv(record_camera(scripted, world)), "exact");
   const MotionDiff d = compare_motion(scripted, replay.scenario, world);
   CHECK(d.frames == 240);
@@ -136,7 +136,7 @@ TEST_CASE(
     "the stated tolerance",
     "[recorded]") {
   const Scenario scripted = scripted_scenario();
-  const World& world = test::world_for(scripted.world);
+  const World& world = test::world_for(scripted);
   const Replay replay(scripted, positions_only(record_camera(scripted, world)), "positions");
   REQUIRE_FALSE(replay.scenario.camera.recorded->track.positions().empty());
   const MotionDiff d = compare_motion(scripted, replay.scenario, world);

@@ -38,7 +38,7 @@ TEST_CASE("on fast-changing truth the oracle pops no more with the interpolated 
   for (const char* name : {"cliff_skim", "rock_circle"}) {
     const Scenario refined = cut(name, 10.0, 0.1);
     const Scenario every = cut(name, 10.0, 0.0);
-    const World& w = test::world_for(refined.world);
+    const World& w = test::world_for(refined);
     const Summary a = run(refined, w, "oracle");
     const Summary b = run(every, w, "oracle");
     INFO(name);
@@ -51,7 +51,7 @@ TEST_CASE("on fast-changing truth the oracle pops no more with the interpolated 
 TEST_CASE("a display that never changes never pops, however fast the truth changes", "[referee]") {
   for (const char* name : {"cliff_skim", "rock_circle", "hover_dash"}) {
     const Scenario s = cut(name, 6.0, 0.1);
-    const World& w = test::world_for(s.world);
+    const World& w = test::world_for(s);
     const Summary c = run(s, w, "constant");
     INFO(name);
     CHECK(c.pops.count == 0);

@@ -28,6 +28,7 @@
 #include "sim/run/run_output.h"
 #include "sim/scenario/scenario.h"
 #include "sim/world/world.h"
+#include "tests/support/scenario_fixtures.h"
 
 using namespace ambisim;
 
@@ -66,14 +67,6 @@ std::vector<Scenario> stress_scenarios() {
     out.push_back(parse_scenario(doc, f));
   }
   return out;
-}
-
-// Worlds keyed by their whole section (seed, origin, road parameters all matter).
-const World& world_for(const Scenario& sc) {
-  static std::map<std::string, std::unique_ptr<World>> cache;
-  auto& slot = cache[sc.document.value("world", nlohmann::json::object()).dump()];
-  if (!slot) slot = std::make_unique<World>(sc.world);
-  return *slot;
 }
 
 bool finite(const Sh9Rgb& sh) {
@@ -216,7 +209,7 @@ TEST_CASE("every planner survives every stress scenario", "[stress]") {
   const auto scenarios = stress_scenarios();
   REQUIRE(scenarios.size() >= 16);
   for (const auto& sc : scenarios) {
-    const World& world = world_for(sc);
+    const World& world = test::world_for(sc);
     check_scenario_world(sc, world);
     const auto reference = compute_reference_track(sc, world);
     for (const auto& v : variants(sc.name)) {
@@ -250,8 +243,8 @@ TEST_CASE("moving the world 1e6 m from the origin keeps every planner's results"
   const Scenario& base = find("baseline");
   const Scenario& shifted = find("origin_shift");
   REQUIRE(shifted.world.origin.x == 1e6);
-  const World& w0 = world_for(base);
-  const World& w1 = world_for(shifted);
+  const World& w0 = test::world_for(base);
+  const World& w1 = test::world_for(shifted);
   const auto ref0 = compute_reference_track(base, w0);
   const auto ref1 = compute_reference_track(shifted, w1);
   REQUIRE(ref0->frames.size() == ref1->frames.size());

@@ -109,9 +109,7 @@ void check_sh(const Sh9Rgb& got, const Sh9Rgb& want, double eps = 1e-5) {
   }
 }
 
-// A shipped scenario cut to `seconds` with a cheap reference. Its world is built by the caller:
-// test::world_for shares one World per seed and size, and a World carries its lighting, so
-// every seed-1 scenario would run under the first one's light.
+// A shipped scenario cut to `seconds` with a cheap reference (its world built by the caller).
 Scenario shipped(const std::string& name, double seconds,
                  const std::function<void(nlohmann::json&)>& edit = {}) {
   nlohmann::json doc =

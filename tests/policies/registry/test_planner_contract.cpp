@@ -33,7 +33,7 @@ TEST_CASE("every planner honours the contract on every scenario", "[contract]") 
   const auto scenarios = short_scenarios(1.0);
   REQUIRE(scenarios.size() >= 6);
   for (const auto& sc : scenarios) {
-    const World& world = world_for(sc.world);
+    const World& world = world_for(sc);
     const auto reference = compute_reference_track(sc, world);
     for (const auto& info : planner_catalogue()) {
       INFO(info.name << " on " << sc.name);

@@ -39,7 +39,7 @@ std::string everything(const Scenario& sc, const Planner& p, const RunResult& r)
 TEST_CASE("SHGraph fast paths give byte-identical results to the naive ones", "[shgraph]") {
   const auto scenarios = short_scenarios(6.0, /*with_small_drive=*/true);
   for (const auto& sc : scenarios) {
-    const World& world = world_for(sc.world);
+    const World& world = world_for(sc);
     const auto reference = compute_reference_track(sc, world);
     for (const char* name : {"shgraph", "shgraph+vp", "shgraph+route", "shgraph2d"}) {
       // Default lifetime; and 2 s lifetime with a 0.5 s fade, so that sets are renewed,
