@@ -51,7 +51,8 @@ bool CoefficientAnchor::update(double now, const AnchorTiming& timing) {
     fade_pending_ = false;
     return true;
   }
-  need_new_ = !in_flight_ && age > timing.lifetime_s - timing.margin_s;
+  const double renewal_age = timing.clock != nullptr ? timing.clock->age(creation_time_) : age;
+  need_new_ = !in_flight_ && renewal_age > timing.lifetime_s - timing.margin_s;
   return false;
 }
 

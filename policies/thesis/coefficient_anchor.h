@@ -4,11 +4,13 @@
 // it is in flight, and when its data was captured. New data fades in linearly over fade_s
 // (D8) from whatever Active was: for a replacement that is the old set, for a fresh anchor the
 // value lookups gave here just before arrival (or a snap when there was none). It asks for a
-// replacement lifetime - margin after capture (D7), serves the old set while the replacement
-// is in flight until lifetime + fade_s, and loses its set after that. It is passive: update()
+// replacement lifetime - margin after capture (D7; sooner under changing light, AnchorTiming),
+// serves the old set while the replacement is in flight until lifetime + fade_s, and loses its
+// set after that. It is passive: update()
 // only reports the loss, the graph decides what it means for its owners.
 #include <cstdint>
 
+#include "policies/core/light_clock.h"
 #include "sim/sh/sh9.h"
 
 namespace ambisim {
@@ -17,6 +19,11 @@ struct AnchorTiming {
   double lifetime_s = 60.0;  // validity of a set, from its request time (D6)
   double fade_s = 1.0;       // linear fade-in of new coefficients (D8)
   double margin_s = 1.0;     // re-request this long before the lifetime ends (D7)
+  // Renewal on the light clock (the thesis' refresh rule, light_clock.h; null: real time): a
+  // set asks for its replacement at clock age lifetime - margin (margin_s then in clock
+  // seconds), so sooner while the light changes. It is still lost only at real age lifetime
+  // (+ fade_s while its replacement is in flight): a stale set serves better than none.
+  const LightClock* clock = nullptr;
 };
 
 class CoefficientAnchor {

@@ -31,6 +31,10 @@
 // deletes sets next to the camera owned across a coarse face, as the thesis observed (L554).
 // retention=lifetime: sets expire lifetime_s after their request (D6) and are re-requested
 // renew_margin_s + 2 capture latencies before (D7), as the thesis' fix (L556).
+// Under changing light with refresh=rate (an option, default lifetime) renewals go by the light
+// clock (policies/core/light_clock.h, the thesis' refresh rule of 7.5.3): sets are renewed when the
+// light may have changed by refresh_tolerance, in either retention (cap keeps deciding which
+// sets stay); under still light nothing changes.
 //
 // No fade: the octree inserts new sets directly (the thesis added fading only in SHGraph).
 #include <cstdint>
@@ -41,6 +45,7 @@
 
 #include "policies/core/coefficient_format.h"
 #include "policies/core/lattice_key.h"
+#include "policies/core/light_clock.h"
 #include "policies/core/planner_info.h"
 #include "policies/core/planner_params.h"
 #include "policies/core/velocity_prediction.h"
@@ -131,6 +136,7 @@ class OctreePlanner final : public Planner {
   std::int64_t max_sets_;
   double lifetime_s_;
   double renew_margin_s_;
+  LightClock clock_;  // the thesis' refresh rule: set ages under changing light
   double lift_m_;
   Lookup lookup_mode_;
 

@@ -107,9 +107,18 @@ template <int Dim>
 void ShGraphCore<Dim>::update(const FrameContext& ctx) {
   world_ = ctx.world;
   now_ = ctx.time;
+  clock_.advance(ctx);
   AnchorTiming timing = s_.timing;
   const double latency = ctx.capture_latency_s();
   timing.margin_s = 2.0 * (std::isfinite(latency) ? latency : 0.0) + 1.0;  // D7
+  if (clock_.running()) {
+    // Under changing light renewals go by clock age (the margin, real seconds, in clock seconds
+    // at its speed now; a clock age is never below the real age, so the anchors visited below
+    // include every one that can expire); under still light the clock is real time.
+    timing.clock = &clock_;
+    timing.margin_s *= clock_.speed();
+  }
+  const auto age_of = [&](double t) { return clock_.running() ? clock_.age(t) : now_ - t; };
   // Every anchor's update(), visiting only those it can change: anchors mid-fade, and anchors
   // whose set is old enough to expire or to ask for renewal now. For any other anchor with a
   // set, age <= lifetime - max(margin now, margin before) - 1 s: not expired, and its renewal
@@ -126,7 +135,7 @@ void ShGraphCore<Dim>::update(const FrameContext& ctx) {
     std::vector<AnchorEntry*> faded = fading_;
     std::sort(faded.begin(), faded.end());
     const double renew_age = s_.timing.lifetime_s - std::max(timing.margin_s, margin_prev_s_) - 1.0;
-    for (auto it = by_age_.begin(); it != by_age_.end() && now_ - it->first > renew_age;) {
+    for (auto it = by_age_.begin(); it != by_age_.end() && age_of(it->first) > renew_age;) {
       AnchorEntry* e = it->second;
       if (!std::binary_search(faded.begin(), faded.end(), e)) e->anchor.update(now_, timing);
       it = e->anchor.has_coefficients() ? std::next(it) : by_age_.erase(it);

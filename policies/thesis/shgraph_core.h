@@ -138,6 +138,7 @@ class ShGraphCore {
   std::set<std::pair<double, AnchorEntry*>> by_age_;
   std::vector<AnchorEntry*> fading_;
   double margin_prev_s_ = 0.0;  // the renewal margin of the previous update()
+  LightClock clock_;            // set ages under changing light (the thesis' refresh rule)
   bool naive_ = false;
   struct InFlight {
     Key key{};

@@ -81,6 +81,7 @@ std::vector<ParamSpec> shgraph_params(int dim, bool predict, bool route) {
     v.push_back(choice_param("sheet_over", "ground", {"ground", "surface"},
                              "sheet follows the terrain (under canopy) or the canopy top"));
   }
+  for (auto& p : light_clock_params("rate")) v.push_back(std::move(p));
   for (auto& p : coefficient_format_params()) v.push_back(std::move(p));
   return v;
 }
@@ -89,6 +90,8 @@ ShGraphSettings shgraph_settings_from(const PlannerParams& p, int dim) {
   ShGraphSettings s;
   s.timing.lifetime_s = p.number("lifetime_s");
   s.timing.fade_s = p.number("fade_s");
+  s.refresh_by_rate = p.choice("refresh") == "rate";
+  s.refresh_tolerance = p.number("refresh_tolerance");
   s.fade_from_lookup = p.choice("fade_from") == "lookup";
   s.root_size_m = p.number("root_size_m");
   s.min_cell_m = std::min(p.number("min_cell_m"), s.root_size_m);

@@ -14,12 +14,14 @@ enum class WeightMode { inverse_distance, compact };
 enum class LevelRule { first, complete };
 
 struct ShGraphSettings {
-  double root_size_m = 243.0;  // the normal root size (D9); cells are root / 3^d
-  double min_cell_m = 3.0;     // finest cell: MaxDepth = floor(log3(root / min_cell)) (D2)
-  double k = 9.0;              // D2: cells exposed per finest cell crossed (9 in 3D, 3 on a sheet)
-  double fps_min = 0.0;        // D2 frame rate; 0 = the current one (1 / dt)
-  AnchorTiming timing;         // lifetime, fade; margin is derived per frame (D7)
-  bool fade_from_lookup = true;  // D8: a fresh anchor fades from the lookup value (else snaps)
+  double root_size_m = 243.0;   // the normal root size (D9); cells are root / 3^d
+  double min_cell_m = 3.0;      // finest cell: MaxDepth = floor(log3(root / min_cell)) (D2)
+  double k = 9.0;               // D2: cells exposed per finest cell crossed (9 in 3D, 3 on a sheet)
+  double fps_min = 0.0;         // D2 frame rate; 0 = the current one (1 / dt)
+  AnchorTiming timing;          // lifetime, fade; margin is derived per frame (D7)
+  bool refresh_by_rate = true;  // the thesis' refresh rule under changing light (7.5.3)
+  double refresh_tolerance = 0.04;  // the relative change a set may go stale by
+  bool fade_from_lookup = true;     // D8: a fresh anchor fades from the lookup value (else snaps)
   WeightMode weights = WeightMode::inverse_distance;  // D4
   LevelRule level = LevelRule::first;                 // D5 / L963
   int widen_cells = 3;              // widening radius at the working depth once 3^Dim is complete

@@ -9,7 +9,8 @@
 namespace ambisim {
 
 template <int Dim>
-ShGraphCore<Dim>::ShGraphCore(const ShGraphSettings& s) : s_(s) {
+ShGraphCore<Dim>::ShGraphCore(const ShGraphSettings& s)
+    : s_(s), clock_(s.refresh_by_rate, s.timing.lifetime_s, s.refresh_tolerance) {
   dmax_ = ambisim::max_depth(s_.root_size_m, s_.min_cell_m);
   pow3_[0] = 1;
   for (int i = 1; i < kMaxLevels; ++i) pow3_[i] = 3 * pow3_[i - 1];
