@@ -81,8 +81,17 @@ SunPathParams parse_sun_path(ObjectReader& r) {
 
 }  // namespace
 
-SunParams parse_sun(ObjectReader& r) {
+SunParams parse_sun(ObjectReader& r, SkyParams::Model sky) {
   SunParams s;
+  if (sky == SkyParams::Model::preetham) {
+    for (const char* key : {"colour", "radiance_ratio", "disc_solid_angle_sr"}) {
+      if (r.has(key)) {
+        r.fail(key,
+               "only the gradient sky's sun takes it (the Preetham sky's atmosphere sets the "
+               "sun's colour and irradiance); set /world/sky/model to \"gradient\" or remove it");
+      }
+    }
+  }
   s.enabled = r.boolean("enabled", s.enabled);
   const bool moving = r.has("path");
   if (moving && (r.has("elevation_deg") || r.has("azimuth_deg"))) {
@@ -111,6 +120,16 @@ SkyParams parse_sky(ObjectReader& r) {
     r.fail("uniform", "a uniform sky is a gradient sky: model must be \"gradient\"");
   }
   s.uniform = uniform;
+  if (s.model == SkyParams::Model::gradient && r.has("turbidity")) {
+    r.fail("turbidity", "only the Preetham sky has a turbidity (model is \"gradient\")");
+  }
+  if (s.model == SkyParams::Model::preetham) {
+    for (const char* key : {"zenith", "horizon", "uniform_radiance"}) {
+      if (r.has(key)) {
+        r.fail(key, "only the gradient sky takes it (model is \"preetham\")");
+      }
+    }
+  }
   s.turbidity = r.number("turbidity", s.turbidity, Range::closed(2.0, 10.0));
   s.zenith = read_rgb(r, "zenith", s.zenith);
   s.horizon = read_rgb(r, "horizon", s.horizon);

@@ -124,8 +124,10 @@ struct LightingParams {
 };
 
 // Readers of the world's "sun", "sky", "clouds", "lamps" and "fog" objects (keys in
-// scenarios/README.md); each calls r.finish().
-SunParams parse_sun(ObjectReader& r);
+// scenarios/README.md); each calls r.finish(). A key that only the other sky model uses is an
+// error, not silently ignored: the sun's colour, radiance_ratio and disc_solid_angle_sr and the
+// sky's zenith, horizon and uniform_radiance are the gradient sky's, turbidity is Preetham's.
+SunParams parse_sun(ObjectReader& r, SkyParams::Model sky);
 SkyParams parse_sky(ObjectReader& r);
 CloudParams parse_clouds(ObjectReader& r, std::uint64_t world_seed);
 LampParams parse_lamps(ObjectReader& r);

@@ -63,8 +63,9 @@ WorldParams parse_world_params(ObjectReader& r) {
   }
   if (auto o = r.optional_object("terrain")) w.terrain = parse_terrain(*o);
   if (auto o = r.optional_object("road")) w.road = parse_road(*o);
-  if (auto o = r.optional_object("sun")) w.sun = parse_sun(*o);
+  // The sky first: which sun keys apply depends on its model.
   if (auto o = r.optional_object("sky")) w.sky = parse_sky(*o);
+  if (auto o = r.optional_object("sun")) w.sun = parse_sun(*o, w.sky.model);
   if (auto o = r.optional_object("clouds")) w.clouds = parse_clouds(*o, w.seed);
   if (auto o = r.optional_object("lamps")) w.lamps = parse_lamps(*o);
   if (auto o = r.optional_object("fog")) w.fog = parse_fog(*o);

@@ -103,7 +103,7 @@ mutate huge_world 'd["world"]["size_m"] = [1e9, 1e9]'
 mutate too_many_cells 'd["world"]["size_m"] = [16384, 16384]; d["world"]["cell_m"] = 1'
 mutate zero_cell 'd["world"]["cell_m"] = 0'
 mutate canopy_inverted 'd["world"]["terrain"] = {"canopy_min_m": 20, "canopy_max_m": 10}'
-mutate huge_colour 'd["world"]["sky"] = {"zenith": [1e300, 1, 1]}'
+mutate huge_colour 'd["world"]["sky"] = {"model": "gradient", "zenith": [1e300, 1, 1]}'
 mutate zero_fps 'd["frames"]["fps"] = 0'
 mutate negative_fps 'd["frames"]["fps"] = -30'
 mutate huge_fps 'd["frames"]["fps"] = 1e9'
@@ -124,6 +124,43 @@ mutate tiny_cut_period 'd["camera"]["periodic_cut"] = {"every_s": 1e-9, "jump_ah
 mutate road_disabled 'd["world"]["road"]["enabled"] = False; del d["receivers"]["traffic"]'
 mutate traffic_without_road 'd["world"]["road"]["enabled"] = False; d["camera"] = {"points": [[10, 10, 50], [100, 100, 50]], "speed_mps": 5}'
 mutate start_beyond_road 'd["camera"]["start_arc_length_m"] = 1e9'
+# Lighting that changes: the sun's path, the sky, clouds, lamps and height fog.
+mutate sun_no_such_day 'd["world"]["sun"] = {"path": dict({"type": "solar", "date": "2026-06-21", "latitude_deg": 57.7, "longitude_deg": 12, "start": "12:00"}, date="2026-02-30")}'
+mutate sun_date_format 'd["world"]["sun"] = {"path": dict({"type": "solar", "date": "2026-06-21", "latitude_deg": 57.7, "longitude_deg": 12, "start": "12:00"}, date="21/06/2026")}'
+mutate sun_latitude 'd["world"]["sun"] = {"path": dict({"type": "solar", "date": "2026-06-21", "latitude_deg": 57.7, "longitude_deg": 12, "start": "12:00"}, latitude_deg=91)}'
+mutate sun_longitude 'd["world"]["sun"] = {"path": dict({"type": "solar", "date": "2026-06-21", "latitude_deg": 57.7, "longitude_deg": 12, "start": "12:00"}, longitude_deg=-200)}'
+mutate sun_utc_offset 'd["world"]["sun"] = {"path": dict({"type": "solar", "date": "2026-06-21", "latitude_deg": 57.7, "longitude_deg": 12, "start": "12:00"}, utc_offset_h=20)}'
+mutate sun_start_hour 'd["world"]["sun"] = {"path": dict({"type": "solar", "date": "2026-06-21", "latitude_deg": 57.7, "longitude_deg": 12, "start": "12:00"}, start="25:00")}'
+mutate sun_time_scale 'd["world"]["sun"] = {"path": dict({"type": "solar", "date": "2026-06-21", "latitude_deg": 57.7, "longitude_deg": 12, "start": "12:00"}, time_scale=-1)}'
+mutate sun_path_type 'd["world"]["sun"] = {"path": {"type": "lunar"}}'
+mutate sun_path_and_fixed 'd["world"]["sun"] = {"elevation_deg": 30, "path": {"type": "solar", "date": "2026-06-21", "latitude_deg": 57.7, "longitude_deg": 12, "start": "12:00"}}'
+mutate sun_keys_order 'd["world"]["sun"] = {"path": {"type": "keyframes", "keys": [{"time_s": 10, "elevation_deg": 10, "azimuth_deg": 100}, {"time_s": 5, "elevation_deg": 5, "azimuth_deg": 100}]}}'
+mutate sun_key_elevation 'd["world"]["sun"] = {"path": {"type": "keyframes", "keys": [{"time_s": 0, "elevation_deg": 100, "azimuth_deg": 100}]}}'
+mutate sun_keys_empty 'd["world"]["sun"] = {"path": {"type": "keyframes", "keys": []}}'
+mutate sun_colour_preetham 'd["world"]["sky"] = {"model": "preetham"}; d["world"]["sun"] = {"colour": [1, 0.9, 0.8]}'
+mutate sky_model 'd["world"]["sky"] = {"model": "hosek"}'
+mutate sky_turbidity 'd["world"]["sky"] = {"model": "preetham", "turbidity": 50}'
+mutate sky_turbidity_gradient 'd["world"]["sky"] = {"model": "gradient", "turbidity": 3}'
+mutate sky_zenith_preetham 'd["world"]["sky"] = {"zenith": [0.2, 0.4, 1]}'
+mutate cloud_coverage 'd["world"]["clouds"] = {"coverage": 1.5}'
+mutate cloud_scale 'd["world"]["clouds"] = {"scale_m": 0}'
+mutate cloud_softness 'd["world"]["clouds"] = {"softness": -0.1}'
+mutate cloud_wind 'd["world"]["clouds"] = {"wind_mps": 1e9}'
+mutate cloud_opacity 'd["world"]["clouds"] = {"opacity": 2}'
+mutate cloud_key 'd["world"]["clouds"] = {"coverge": 0.4}'
+mutate lamp_spacing 'd["world"]["lamps"] = {"spacing_m": 0}'
+mutate lamp_cone 'd["world"]["lamps"] = {"cone_deg": 95}'
+mutate lamp_intensity 'd["world"]["lamps"] = {"intensity_kcd": -3}'
+mutate lamp_colour 'd["world"]["lamps"] = {"colour": [1, -1, 1]}'
+mutate lamp_schedule_order 'd["world"]["lamps"] = {"schedule": [{"time_s": 5, "on": True}, {"time_s": 2, "on": False}]}'
+mutate lamp_schedule_type 'd["world"]["lamps"] = {"schedule": [{"time_s": 5, "on": "yes"}]}'
+mutate lamp_schedule_and_photocell 'd["world"]["lamps"] = {"schedule": [{"time_s": 5, "on": True}], "on_below_elevation_deg": 2}'
+mutate lamps_without_road 'd["world"]["road"]["enabled"] = False; d["camera"] = {"points": [[10, 10, 50], [100, 100, 50]], "speed_mps": 5}; del d["receivers"]["traffic"]; d["world"]["lamps"] = {}'
+mutate fog_keys_order 'd["world"]["fog"] = {"height": {"keys": [{"time_s": 10, "density_per_m": 0.01, "base_m": 0}, {"time_s": 5, "density_per_m": 0.01, "base_m": 0}]}}'
+mutate fog_density 'd["world"]["fog"] = {"height": {"density_per_m": -0.01}}'
+mutate fog_falloff 'd["world"]["fog"] = {"height": {"falloff_m": 0, "density_per_m": 0.01}}'
+mutate fog_keys_empty 'd["world"]["fog"] = {"height": {"keys": []}}'
+mutate fog_keys_and_density 'd["world"]["fog"] = {"height": {"keys": [{"time_s": 0, "density_per_m": 0.01, "base_m": 0}], "density_per_m": 0.02}}'
 
 expect_error missing "nope.json: no such file" "$tmp/out_missing" -- run "$tmp/nope.json" --out "$tmp/out_missing"
 expect_error directory "is a directory" "$tmp/out_directory" -- run "$tmp" --out "$tmp/out_directory"
@@ -154,6 +191,42 @@ run_error too_many_cells "/world/cell_m: too small for size_m: at most 67108864"
 run_error zero_cell "/world/cell_m: must be >= 0.05, got 0"
 run_error canopy_inverted "/world/terrain/canopy_max_m: must be >= canopy_min_m"
 run_error huge_colour "/world/sky/zenith/0: must be <= 1000000"
+run_error sun_no_such_day "sun_no_such_day.json: /world/sun/path/date: no such day: 2026-02-30"
+run_error sun_date_format "sun_date_format.json: /world/sun/path/date: must be a date \"YYYY-MM-DD\""
+run_error sun_latitude "sun_latitude.json: /world/sun/path/latitude_deg: must be <= 90"
+run_error sun_longitude "sun_longitude.json: /world/sun/path/longitude_deg: must be >= -180"
+run_error sun_utc_offset "sun_utc_offset.json: /world/sun/path/utc_offset_h: must be <= 14"
+run_error sun_start_hour "sun_start_hour.json: /world/sun/path/start: must be a local time"
+run_error sun_time_scale "sun_time_scale.json: /world/sun/path/time_scale: must be >= 0"
+run_error sun_path_type "sun_path_type.json: /world/sun/path/type: unknown value \"lunar\"; valid: solar, keyframes"
+run_error sun_path_and_fixed "sun_path_and_fixed.json: /world/sun/path: give either a path or a fixed"
+run_error sun_keys_order "sun_keys_order.json: /world/sun/path/keys/1/time_s: must be greater than the previous"
+run_error sun_key_elevation "sun_key_elevation.json: /world/sun/path/keys/0/elevation_deg: must be <= 90"
+run_error sun_keys_empty "sun_keys_empty.json: /world/sun/path/keys: needs at least one key"
+run_error sun_colour_preetham "sun_colour_preetham.json: /world/sun/colour: only the gradient sky"
+run_error sky_model "sky_model.json: /world/sky/model: unknown value \"hosek\"; valid: preetham, gradient"
+run_error sky_turbidity "sky_turbidity.json: /world/sky/turbidity: must be <= 10"
+run_error sky_turbidity_gradient "sky_turbidity_gradient.json: /world/sky/turbidity: only the Preetham sky"
+run_error sky_zenith_preetham "sky_zenith_preetham.json: /world/sky/zenith: only the gradient sky"
+run_error cloud_coverage "cloud_coverage.json: /world/clouds/coverage: must be <= 1"
+run_error cloud_scale "cloud_scale.json: /world/clouds/scale_m: must be >= 10"
+run_error cloud_softness "cloud_softness.json: /world/clouds/softness: must be >= 0.01"
+run_error cloud_wind "cloud_wind.json: /world/clouds/wind_mps: must be <= 200"
+run_error cloud_opacity "cloud_opacity.json: /world/clouds/opacity: must be <= 1"
+run_error cloud_key "cloud_key.json: /world/clouds/coverge: unknown key; valid keys:"
+run_error lamp_spacing "lamp_spacing.json: /world/lamps/spacing_m: must be >= 2"
+run_error lamp_cone "lamp_cone.json: /world/lamps/cone_deg: must be <= 90"
+run_error lamp_intensity "lamp_intensity.json: /world/lamps/intensity_kcd: must be >= 0"
+run_error lamp_colour "lamp_colour.json: /world/lamps/colour/1: must be >= 0"
+run_error lamp_schedule_order "lamp_schedule_order.json: /world/lamps/schedule/1/time_s: must be greater than the previous"
+run_error lamp_schedule_type "lamp_schedule_type.json: /world/lamps/schedule/0/on: must be true or false"
+run_error lamp_schedule_and_photocell "lamp_schedule_and_photocell.json: /world/lamps/schedule: give either a schedule or on_below_elevation_deg"
+run_error lamps_without_road "lamps_without_road.json: /world/lamps: street lamps stand along the road"
+run_error fog_keys_order "fog_keys_order.json: /world/fog/height/keys/1/time_s: must be greater than the previous"
+run_error fog_density "fog_density.json: /world/fog/height/density_per_m: must be >= 0"
+run_error fog_falloff "fog_falloff.json: /world/fog/height/falloff_m: must be >= 0.1"
+run_error fog_keys_empty "fog_keys_empty.json: /world/fog/height/keys: needs at least one key"
+run_error fog_keys_and_density "fog_keys_and_density.json: /world/fog/height/keys: give either keys or one density_per_m"
 run_error zero_fps "/frames/fps: must be > 0, got 0"
 run_error negative_fps "/frames/fps: must be > 0, got -30"
 run_error huge_fps "/frames/fps: must be <= 10000, got 1000000000"

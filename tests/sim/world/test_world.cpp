@@ -57,9 +57,28 @@ TEST_CASE("default_world.json parses to the documented defaults", "[world]") {
   CHECK(p.terrain.amplitude_m == d.terrain.amplitude_m);
   CHECK(p.road.width_m == d.road.width_m);
   CHECK(p.sun.elevation_deg == d.sun.elevation_deg);
-  CHECK(p.sun.colour == d.sun.colour);
-  CHECK(p.sky.zenith == d.sky.zenith);
+  CHECK(p.sun.azimuth_deg == d.sun.azimuth_deg);
+  CHECK(p.sky.model == d.sky.model);
+  CHECK(p.sky.turbidity == d.sky.turbidity);
+  CHECK(p.clouds.enabled == d.clouds.enabled);
+  CHECK(p.clouds.coverage == d.clouds.coverage);
+  CHECK(p.clouds.scale_m == d.clouds.scale_m);
+  CHECK(p.clouds.softness == d.clouds.softness);
+  CHECK(p.clouds.altitude_m == d.clouds.altitude_m);
+  CHECK(p.clouds.opacity == d.clouds.opacity);
+  CHECK(p.clouds.wind_mps == d.clouds.wind_mps);
+  CHECK(p.clouds.wind_from_deg == d.clouds.wind_from_deg);
+  CHECK(p.lamps.enabled == d.lamps.enabled);
+  CHECK(p.lamps.spacing_m == d.lamps.spacing_m);
+  CHECK(p.lamps.height_m == d.lamps.height_m);
+  CHECK(p.lamps.offset_m == d.lamps.offset_m);
+  CHECK(p.lamps.colour == d.lamps.colour);
+  CHECK(p.lamps.intensity_kcd == d.lamps.intensity_kcd);
+  CHECK(p.lamps.cone_deg == d.lamps.cone_deg);
+  CHECK(p.lamps.on_below_elevation_deg == d.lamps.on_below_elevation_deg);
   CHECK(p.fog.extinction_per_m == d.fog.extinction_per_m);
+  CHECK(p.fog.colour == d.fog.colour);
+  CHECK(p.fog.sky_distance_m == d.fog.sky_distance_m);
 }
 
 TEST_CASE("world params reject unknown keys and bad values with JSON paths", "[world]") {
