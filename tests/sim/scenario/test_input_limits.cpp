@@ -76,7 +76,7 @@ TEST_CASE("absurd sizes and rates are refused by range checks", "[scenario]") {
   CHECK_THAT(error_with([](json& d) { d["receivers"]["traffic"]["max_live"] = 1000000000; }),
              StartsWith("s.json: /receivers/traffic/max_live: must be <= 10000"));
   CHECK_THAT(error_with([](json& d) {
-               d["world"]["sky"] = {{"zenith", {1e300, 1, 1}}};
+               d["world"]["sky"] = {{"model", "gradient"}, {"zenith", {1e300, 1, 1}}};
              }),
              StartsWith("s.json: /world/sky/zenith/0: must be <= 1000000"));
   CHECK_THAT(error_with([](json& d) { d["camera"]["height_m"] = 1e300; }),
