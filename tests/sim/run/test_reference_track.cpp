@@ -1,9 +1,13 @@
 // The reference's cost shortcuts and what they cost in accuracy (must stay < 0.5 dE00).
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <functional>
 
 #include <glm/geometric.hpp>
 
+#include <nlohmann/json.hpp>
+
+#include "sim/base/json_reader.h"
 #include "sim/metrics/accuracy.h"
 #include "sim/render/capture.h"
 #include "sim/run/reference_track.h"
@@ -80,4 +84,86 @@ TEST_CASE("the default 24x24 reference is within 0.5 dE00 (p95) of a 64x64 one; 
   CHECK(ReferenceSettings{}.face_size == 24);
   CHECK(p24 < kShortcutToleranceDe);
   CHECK(p16 > kShortcutToleranceDe);
+}
+
+namespace {
+
+// small_drive (2 s at 30 fps) in a world whose light changes abruptly, with its reference on
+// the 0.1 s grid and at every frame; returns the worst display difference between the two and
+// the largest frame-to-frame change of one receiver in the every-frame track (what the grid must
+// not smooth away).
+struct ChangeCheck {
+  double worst = 0.0;
+  double largest_jump = 0.0;
+  std::int64_t grid_captures = 0, every_captures = 0;
+};
+ChangeCheck check_changes(const std::function<void(nlohmann::json&)>& edit) {
+  nlohmann::json doc = load_json_file(kSmall);
+  edit(doc);
+  Scenario every = parse_scenario(doc, "changing.json");
+  every.reference.interval_s = 0.0;
+  Scenario grid = every;
+  grid.reference.interval_s = 0.1;
+  const World world(every.world);
+  const auto a = compute_reference_track(every, world);
+  const auto b = compute_reference_track(grid, world);
+  REQUIRE(a->ids == b->ids);
+  ChangeCheck c;
+  c.every_captures = a->captures;
+  c.grid_captures = b->captures;
+  for (std::size_t i = 0; i < a->irradiance.size(); ++i) {
+    c.worst =
+        std::max(c.worst, display_difference(a->irradiance[i], b->irradiance[i], a->exposure));
+  }
+  const std::size_t nn = a->normals.size();
+  for (std::size_t f = 1; f < a->frames.size(); ++f) {
+    const auto& now = a->frames[f];
+    const auto& before = a->frames[f - 1];
+    for (std::size_t k = 0; k < now.count; ++k) {
+      for (std::size_t j = 0; j < before.count; ++j) {
+        if (a->ids[before.begin + j] != a->ids[now.begin + k]) continue;
+        for (std::size_t m = 0; m < nn; ++m) {
+          c.largest_jump = std::max(
+              c.largest_jump, display_difference(a->values(now.begin + k)[m],
+                                                 a->values(before.begin + j)[m], a->exposure));
+        }
+      }
+    }
+  }
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("the reference's time grid catches a lamp switching on and a cloud edge crossing",
+          "[reference]") {
+  // Every-frame truth against the 0.1 s grid with its refinement, where the light changes in
+  // one frame: street lamps switching on at night (at 1.0 s, between two grid keys), and a
+  // sharp cloud edge racing over the road at 150 m/s. The grid must follow within the
+  // shortcut's tolerance while the truth jumps by far more.
+  SECTION("a lamp switch") {
+    const ChangeCheck c = check_changes([](nlohmann::json& d) {
+      d["world"]["sky"] = {{"model", "preetham"}};
+      d["world"]["sun"] = {{"elevation_deg", -10}, {"azimuth_deg", 200}};
+      d["world"]["lamps"] = {
+          {"spacing_m", 20},
+          {"schedule", {{{"time_s", 0}, {"on", false}}, {{"time_s", 1.01}, {"on", true}}}}};
+    });
+    CAPTURE(c.worst, c.largest_jump, c.grid_captures, c.every_captures);
+    CHECK(c.largest_jump > 10.0);
+    CHECK(c.worst < kShortcutToleranceDe);
+    CHECK(c.grid_captures < c.every_captures);
+  }
+  SECTION("a cloud edge") {
+    const ChangeCheck c = check_changes([](nlohmann::json& d) {
+      d["world"]["sky"] = {{"model", "preetham"}};
+      d["world"]["sun"] = {{"elevation_deg", 35}, {"azimuth_deg", 200}};
+      d["world"]["clouds"] = {{"coverage", 0.5}, {"scale_m", 200},  {"softness", 0.01},
+                              {"opacity", 0.9},  {"wind_mps", 150}, {"wind_from_deg", 0}};
+    });
+    CAPTURE(c.worst, c.largest_jump, c.grid_captures, c.every_captures);
+    CHECK(c.largest_jump > 3.0);
+    CHECK(c.worst < kShortcutToleranceDe);
+    CHECK(c.grid_captures < c.every_captures);
+  }
 }
