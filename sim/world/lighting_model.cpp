@@ -84,7 +84,7 @@ Rgb LightingState::sky_irradiance(const glm::dvec3& n) const {
   return Rgb(std::max(e.x, 0.0f), std::max(e.y, 0.0f), std::max(e.z, 0.0f));
 }
 
-LightingModel::LightingModel(const World& world) : world_(world), p_(world.params().lighting()) {
+LightingModel::LightingModel(const World& world) : p_(world.params().lighting()) {
   static_ = p_.is_static();
   legacy_ = p_.is_legacy();
   if (p_.clouds.enabled) {

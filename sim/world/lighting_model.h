@@ -102,7 +102,6 @@ class LightingModel {
   };
   Scalars scalars_at(double t) const;
 
-  const World& world_;
   LightingParams p_;
   bool static_ = true, legacy_ = false;
   std::unique_ptr<CloudLayer> clouds_;
