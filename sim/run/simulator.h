@@ -4,7 +4,8 @@
 //
 // Per frame, in this order:
 //   0. before the first frame only: the planner's preload captures are rendered and delivered
-//      outside the budget (a bake; counted as bake.* in the summary);
+//      outside the budget (a bake; counted as bake.* in the summary), each in frame 0's light
+//      or in that of its CaptureRequest::time (in time order; frame 0's light is restored);
 //   1. the motion advances (camera, receivers);
 //   2. the planner sees the receivers and plans; the simulator starts at most
 //      `startable_captures` requests (the budget's free faces after those owed to captures in
