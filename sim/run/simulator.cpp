@@ -11,6 +11,7 @@
 #include "sim/metrics/view_weights.h"
 #include "sim/render/capture.h"
 #include "sim/scenario/capture_budget.h"
+#include "sim/scenario/frame_schedule.h"
 #include "sim/scenario/scenario_motion.h"
 #include "sim/sh/sh_projection.h"
 #include "sim/world/illumination.h"
@@ -40,14 +41,16 @@ struct InFlight {
 }  // namespace
 
 std::vector<glm::dvec3> camera_route(const ScenarioMotion& motion, double spacing_m) {
-  // The camera's positions over the run (a pure function of time), kept where it has moved at
-  // least spacing_m from the last point kept, and the last one.
+  // The camera's positions at the run's frames, kept where it has moved at least spacing_m
+  // from the last point kept, and the last one. At the frames exactly (not on a grid of its
+  // own): a camera recorded at every frame and replayed then gives the same route, byte for
+  // byte, and so the same bake.
   std::vector<glm::dvec3> route;
-  const double end = motion.schedule().duration();
-  const int n = std::max(2, static_cast<int>(std::ceil(end / 0.05)) + 1);
+  const FrameSchedule& schedule = motion.schedule();
+  const std::int64_t n = schedule.frame_count();
   double prev = 0.0;
-  for (int k = 0; k < n; ++k) {
-    const double t = end * k / (n - 1);
+  for (std::int64_t k = 0; k < n; ++k) {
+    const double t = schedule.time_of(k);
     const glm::dvec3 p = motion.camera_path().state(t, k == 0 ? t : prev).position;
     prev = t;
     if (route.empty() || glm::length(p - route.back()) >= spacing_m || k == n - 1) {

@@ -85,8 +85,8 @@ struct SimulationOptions {
 ReceiverViewing receiver_viewing(const CameraView& view, const Receiver& r);
 
 class ScenarioMotion;
-// Where the camera goes during the run, as points at least spacing_m apart (the "route" the
-// planners are told about: the level's playable path).
+// Where the camera goes during the run, as its positions at the frames kept at least spacing_m
+// apart, and the last (the "route" the planners are told about: the level's playable path).
 std::vector<glm::dvec3> camera_route(const ScenarioMotion& motion, double spacing_m);
 
 RunResult simulate(const Scenario& scenario, const World& world, const ReferenceTrack& reference,
