@@ -82,6 +82,9 @@ struct FrameContext {
   double faces_per_frame = 1.0;  // the capture budget (cube faces per frame)
   int face_size = 16;            // cube face resolution of captures
   int startable_captures = 0;    // how many new captures plan() may start this frame
+  // The run's length in seconds, known from the start: the time span a level's lighting is
+  // baked for (its time-of-day window), as a game knows its own schedule.
+  double run_duration_s = 0.0;
   const WorldQueries* world = nullptr;
   // Frames from a capture's start until it is usable, at the current budget: ceil(6 / faces).
   double capture_latency_s() const;
@@ -93,6 +96,12 @@ struct CaptureRequest {
   // Also render the street lamps' light apart (thesis 7.5.3: an additive set scaled by the
   // lamps' state): 12 faces instead of 6; `sh` is then everything but the lamps.
   bool lamp_layer = false;
+  // Preload only: render this capture in the light of this time (s since the start) instead of
+  // frame 0's, e.g. a bake at several times of day. Negative: frame 0's light. The simulator
+  // renders preload captures in time order and delivers them in that order (stable: requests
+  // of the same time keep the planner's order); a request from plan() with a time >= 0 is a
+  // contract violation (std::logic_error).
+  double time = -1.0;
 };
 
 struct FinishedProbe {
@@ -145,7 +154,8 @@ class Planner {
   virtual nlohmann::json params() const = 0;  // every parameter, echoed into results
 
   // Captures to render before the first frame without budget (ctx is frame 0's context). The
-  // simulator renders each at ctx.face_size, delivers it (requested and finished at time 0) and
+  // simulator renders each at ctx.face_size in frame 0's light (or that of its `time`),
+  // delivers it (requested and finished at time 0, whatever light it was rendered in) and
   // reports the count and the faces as the run's bake cost. Default: none.
   virtual std::vector<CaptureRequest> preload(const FrameContext& /*ctx*/) { return {}; }
   virtual std::vector<CaptureRequest> plan(const FrameContext& ctx) = 0;

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "policies/ambisim/demand_planner.h"
+#include "policies/baselines/baked.h"
 #include "policies/baselines/constant_ambient.h"
 #include "policies/baselines/nearest_probe.h"
 #include "policies/baselines/oracle.h"
@@ -28,6 +29,8 @@ const std::vector<PlannerInfo>& planner_catalogue() {
       PerObjectPlanner::info(),
       ScrollingGridPlanner::info(),
       RelitPlanner::info(),
+      BakedPlanner::baked_info(),
+      BakedPlanner::tod_info(),
       OctreePlanner::info(),
       OctreePlanner::vp_info(),
       ShGraphPlanner::info(),

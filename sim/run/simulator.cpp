@@ -1,5 +1,6 @@
 #include "sim/run/simulator.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -10,6 +11,7 @@
 #include "sim/metrics/view_weights.h"
 #include "sim/render/capture.h"
 #include "sim/scenario/capture_budget.h"
+#include "sim/scenario/frame_schedule.h"
 #include "sim/scenario/scenario_motion.h"
 #include "sim/sh/sh_projection.h"
 #include "sim/world/illumination.h"
@@ -39,14 +41,16 @@ struct InFlight {
 }  // namespace
 
 std::vector<glm::dvec3> camera_route(const ScenarioMotion& motion, double spacing_m) {
-  // The camera's positions over the run (a pure function of time), kept where it has moved at
-  // least spacing_m from the last point kept, and the last one.
+  // The camera's positions at the run's frames, kept where it has moved at least spacing_m
+  // from the last point kept, and the last one. At the frames exactly (not on a grid of its
+  // own): a camera recorded at every frame and replayed then gives the same route, byte for
+  // byte, and so the same bake.
   std::vector<glm::dvec3> route;
-  const double end = motion.schedule().duration();
-  const int n = std::max(2, static_cast<int>(std::ceil(end / 0.05)) + 1);
+  const FrameSchedule& schedule = motion.schedule();
+  const std::int64_t n = schedule.frame_count();
   double prev = 0.0;
-  for (int k = 0; k < n; ++k) {
-    const double t = end * k / (n - 1);
+  for (std::int64_t k = 0; k < n; ++k) {
+    const double t = schedule.time_of(k);
     const glm::dvec3 p = motion.camera_path().state(t, k == 0 ? t : prev).position;
     prev = t;
     if (route.empty() || glm::length(p - route.back()) >= spacing_m || k == n - 1) {
@@ -207,6 +211,7 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
     ctx.camera_cut = mf.camera.cut;
     ctx.faces_per_frame = budget.faces_per_frame(mf.frame.time);
     ctx.face_size = face_size;
+    ctx.run_duration_s = motion.schedule().duration();
     ctx.world = &world_queries;
     const bool unlimited = planner.ignores_budget();
     ctx.startable_captures =
@@ -216,9 +221,26 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
     // 0. before the first frame: the planner's load-time captures, outside the budget.
     if (frame_index == 0) {
       const auto tb = Clock::now();
-      for (const auto& req : planner.preload(ctx)) {
+      std::vector<CaptureRequest> preload = planner.preload(ctx);
+      // A capture may ask for the light of another time (a bake at several times of day). A
+      // moving sun's shadow maps are computed forward in time, so those render in time order;
+      // without any such request nothing is reordered and no other state is computed.
+      const auto light_time = [&](const CaptureRequest& r) {
+        return r.time >= 0.0 ? r.time : mf.frame.time;
+      };
+      const bool other_times = std::any_of(preload.begin(), preload.end(), [&](const auto& r) {
+        return light_time(r) != mf.frame.time;
+      });
+      if (other_times) {
+        std::stable_sort(preload.begin(), preload.end(), [&](const auto& a, const auto& b) {
+          return light_time(a) < light_time(b);
+        });
+      }
+      for (const auto& req : preload) {
         InFlight c{req, 0.0, 0, CubeMap(face_size), nullptr, CubeMap()};
-        for (int f = 0; f < c.faces(); ++f) render_face(c, f, light);
+        // `light` is the model's one current state: state_at moves it (restored below).
+        const LightingState& bake_light = other_times ? lighting.state_at(light_time(req)) : light;
+        for (int f = 0; f < c.faces(); ++f) render_face(c, f, bake_light);
         FinishedProbe p;
         p.tag = req.tag;
         p.position = req.position;
@@ -231,6 +253,7 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
         ++bake.captures;
         bake.faces += c.faces();
       }
+      if (other_times) lighting.state_at(mf.frame.time);  // frame 0's light again, for `light`
       result.timing.bake_s += seconds_since(tb);
       metrics.bake(bake);
     }
@@ -243,6 +266,10 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
     std::vector<CaptureRequest> requests = planner.plan(ctx);
     int started = 0;
     for (const auto& req : requests) {
+      if (req.time >= 0.0) {
+        throw std::logic_error(planner.name() +
+                               ": CaptureRequest::time is for preload captures only");
+      }
       if (started < ctx.startable_captures) {
         planner.started(req.tag);
         in_flight.push_back({req, mf.frame.time, 0, unlimited ? CubeMap() : CubeMap(face_size),

@@ -4,7 +4,8 @@
 //
 // Per frame, in this order:
 //   0. before the first frame only: the planner's preload captures are rendered and delivered
-//      outside the budget (a bake; counted as bake.* in the summary);
+//      outside the budget (a bake; counted as bake.* in the summary), each in frame 0's light
+//      or in that of its CaptureRequest::time (in time order; frame 0's light is restored);
 //   1. the motion advances (camera, receivers);
 //   2. the planner sees the receivers and plans; the simulator starts at most
 //      `startable_captures` requests (the budget's free faces after those owed to captures in
@@ -84,8 +85,8 @@ struct SimulationOptions {
 ReceiverViewing receiver_viewing(const CameraView& view, const Receiver& r);
 
 class ScenarioMotion;
-// Where the camera goes during the run, as points at least spacing_m apart (the "route" the
-// planners are told about: the level's playable path).
+// Where the camera goes during the run, as its positions at the frames kept at least spacing_m
+// apart, and the last (the "route" the planners are told about: the level's playable path).
 std::vector<glm::dvec3> camera_route(const ScenarioMotion& motion, double spacing_m);
 
 RunResult simulate(const Scenario& scenario, const World& world, const ReferenceTrack& reference,
