@@ -70,6 +70,12 @@ struct WorldQueries {
   // The level's playable route: where the camera can go (a race track, a road, the designed
   // path), as points about 10 m apart. What a team bakes its static lighting around.
   std::vector<glm::dvec3> route;
+  // Where the level's lit objects go besides (the traffic's lanes, a player's aircraft): the
+  // centres of the object_cell_m squares (x, y) they visit during the run, in ascending cell
+  // order. A bake covers these too: a studio bakes the whole drivable level, not only the
+  // player's own path.
+  std::vector<glm::dvec3> object_cells;
+  double object_cell_m = 0.0;
 };
 
 struct FrameContext {
@@ -102,6 +108,10 @@ struct CaptureRequest {
   // of the same time keep the planner's order); a request from plan() with a time >= 0 is a
   // contract violation (std::logic_error).
   double time = -1.0;
+  // Preload only: render at this cube-face resolution instead of the budget's (a bake is
+  // rendered offline, at the quality a studio ships). 0: the budget's; a request from plan()
+  // with a face size is a contract violation (std::logic_error).
+  int face_size = 0;
 };
 
 struct FinishedProbe {

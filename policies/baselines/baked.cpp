@@ -29,6 +29,9 @@ std::vector<ParamSpec> lattice_params() {
                    "a probe closer to the surface is moved out (at most half a cell) or dropped"),
       integer_param("max_captures", 1000000, Range::closed(1, 1e9),
                     "the bake's budget: the finest levels are left out until it fits"),
+      integer_param("bake_face_size", 24, Range::closed(4, 128),
+                    "cube-face resolution of the bake (offline, not the run's budget; 24 is the "
+                    "shipped reference's)"),
   };
 }
 
@@ -155,7 +158,9 @@ std::vector<CaptureRequest> BakedPlanner::preload(const FrameContext& ctx) {
   BakedLatticeSettings settings = settings_;
   settings.max_points =
       static_cast<double>(params_.integer("max_captures")) / static_cast<double>(bake_count_);
-  lattice_ = BakedLattice(route, surface, settings);
+  lattice_ = world != nullptr
+                 ? BakedLattice(route, surface, settings, world->object_cells, world->object_cell_m)
+                 : BakedLattice(route, surface, settings);
 
   const std::size_t n = lattice_.size();
   sets_.reset(format_, n * bake_count_);
@@ -171,6 +176,7 @@ std::vector<CaptureRequest> BakedPlanner::preload(const FrameContext& ctx) {
       r.position = lattice_.position(i);
       r.tag = static_cast<std::uint64_t>(i * bake_count_ + k + 1);
       r.time = bake_count_ > 1 ? times_[k] : -1.0;
+      r.face_size = static_cast<int>(params_.integer("bake_face_size"));
       out.push_back(r);
     }
   }

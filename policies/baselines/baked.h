@@ -1,9 +1,11 @@
 #pragma once
 // The baked baselines: what a team ships instead of capturing at run time (SPEC 7).
 // - `baked` (Unity APV / Unreal volumetric lightmaps): a dense lattice of probes around the
-//   level's whole route (baked_lattice.h: finest near the surface, 3x coarser per level
-//   above it, probes inside the terrain moved out or dropped), every probe captured before
-//   the first frame (preload, no budget: the bake) in frame 0's light, and never updated.
+//   level's whole route and every square its lit objects visit (WorldQueries::object_cells:
+//   the traffic's lanes far ahead of the camera; baked_lattice.h: finest near the surface, 3x
+//   coarser per level above it, probes inside the terrain moved out or dropped), every probe
+//   captured before the first frame (preload, no budget: the bake) in frame 0's light at
+//   bake_face_size (offline quality, not the run's budget), and never updated.
 //   plan() never asks for anything.
 // - `baked_tod` (Assassin's Creed IV: probes baked at K times of day, blended by the current
 //   time): the same lattice captured at K lighting states t_k = k T / (K - 1), k = 0 .. K - 1,

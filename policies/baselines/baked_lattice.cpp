@@ -141,14 +141,15 @@ std::int64_t BakedLattice::Table::bytes() const {
 // ---- BakedLattice ----
 
 BakedLattice::BakedLattice(const std::vector<glm::dvec3>& route, const Surface& surface,
-                           const BakedLatticeSettings& settings)
+                           const BakedLatticeSettings& settings,
+                           const std::vector<glm::dvec3>& cells, double cell_m)
     : settings_(settings) {
   settings_.levels = std::max(settings_.levels, 1);
   const auto levels = static_cast<std::size_t>(settings_.levels);
   counts_.assign(levels, LevelCounts{});
   probe_index_.resize(levels);
   column_index_.resize(levels);
-  if (route.empty()) return;
+  if (route.empty() && cells.empty()) return;
 
   // 1. Every level's columns and their cell ranges (cheap: five surface samples a column).
   struct ColumnAt {
@@ -163,13 +164,20 @@ BakedLattice::BakedLattice(const std::vector<glm::dvec3>& route, const Surface& 
                               : std::min(settings_.band_m * std::pow(kRatio, l), settings_.top_m);
     // Columns whose cell comes within corridor_m of the route: the cell's centre within
     // corridor_m + half its diagonal.
-    const double reach = settings_.corridor_m + s * std::sqrt(0.5);
+    const double route_reach = settings_.corridor_m + s * std::sqrt(0.5);
     std::vector<std::array<std::int64_t, 2>> cols;
-    for (std::size_t n = 0; n < route.size(); ++n) {
-      // The segment to the next point, or the point alone before a cut and at the end.
-      const glm::dvec3& a = route[n];
-      const bool joined = n + 1 < route.size() && glm::distance(a, route[n + 1]) <= kRouteGap_m;
+    // The route's segments (each to the next point, or the point alone before a cut and at the
+    // end), then the objects' squares as discs around their centres.
+    const std::size_t segments = route.size() + cells.size();
+    for (std::size_t n = 0; n < segments; ++n) {
+      const bool on_route = n < route.size();
+      const glm::dvec3& a = on_route ? route[n] : cells[n - route.size()];
+      const bool joined =
+          on_route && n + 1 < route.size() && glm::distance(a, route[n + 1]) <= kRouteGap_m;
       const glm::dvec3& b = joined ? route[n + 1] : a;
+      // An object's square is covered as itself (it is where the object was, not a corridor
+      // it may leave): its half-diagonal and the lattice cell's.
+      const double reach = on_route ? route_reach : (cell_m + s) * std::sqrt(0.5);
       const std::int64_t i0 = floor_index((std::min(a.x, b.x) - reach) / s);
       const std::int64_t i1 = floor_index((std::max(a.x, b.x) + reach) / s);
       const std::int64_t j0 = floor_index((std::min(a.y, b.y) - reach) / s);

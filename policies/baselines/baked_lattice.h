@@ -84,9 +84,11 @@ class BakedLattice {
   using Surface = std::function<double(double, double)>;
 
   BakedLattice() = default;
-  // The lattice around `route` (points of a polyline; one point is a disc) over `surface`.
+  // The lattice around `route` (points of a polyline; one point is a disc) and around the
+  // squares of side cell_m centred on `cells` (where the lit objects go), over `surface`.
   BakedLattice(const std::vector<glm::dvec3>& route, const Surface& surface,
-               const BakedLatticeSettings& settings);
+               const BakedLatticeSettings& settings, const std::vector<glm::dvec3>& cells = {},
+               double cell_m = 0.0);
 
   const BakedLatticeSettings& settings() const { return settings_; }
   double spacing(int level) const;

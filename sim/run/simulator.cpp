@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
@@ -60,6 +61,25 @@ std::vector<glm::dvec3> camera_route(const ScenarioMotion& motion, double spacin
   return route;
 }
 
+std::vector<glm::dvec3> object_cells(const Scenario& scenario, const World& world, double cell_m) {
+  std::map<std::pair<std::int64_t, std::int64_t>, double> first_height;
+  ScenarioMotion motion(scenario, world);
+  while (motion.next()) {
+    for (const auto& r : motion.receivers()) {
+      const auto i = static_cast<std::int64_t>(std::floor(r.position.x / cell_m));
+      const auto j = static_cast<std::int64_t>(std::floor(r.position.y / cell_m));
+      first_height.emplace(std::make_pair(i, j), r.position.z);
+    }
+  }
+  std::vector<glm::dvec3> out;
+  out.reserve(first_height.size());
+  for (const auto& [ij, z] : first_height) {
+    out.emplace_back((static_cast<double>(ij.first) + 0.5) * cell_m,
+                     (static_cast<double>(ij.second) + 0.5) * cell_m, z);
+  }
+  return out;
+}
+
 ReceiverViewing receiver_viewing(const CameraView& view, const Receiver& r) {
   ReceiverViewing v;
   v.weight = view.screen_weight(r.position, 0.5 * r.size_m);
@@ -115,6 +135,8 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
   LightingModel lighting(world);
   WorldQueries world_queries = planner_world_queries(world, &lighting);
   world_queries.route = camera_route(motion, kRouteSpacing);
+  world_queries.object_cells = object_cells(scenario, world, kRouteSpacing);
+  world_queries.object_cell_m = kRouteSpacing;
   const auto ground = [&world](double x, double y) { return world.ground_height(x, y); };
 
   std::vector<InFlight> in_flight;
@@ -237,7 +259,8 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
         });
       }
       for (const auto& req : preload) {
-        InFlight c{req, 0.0, 0, CubeMap(face_size), nullptr, CubeMap()};
+        InFlight c{req,     0.0,      0, CubeMap(req.face_size > 0 ? req.face_size : face_size),
+                   nullptr, CubeMap()};
         // `light` is the model's one current state: state_at moves it (restored below).
         const LightingState& bake_light = other_times ? lighting.state_at(light_time(req)) : light;
         for (int f = 0; f < c.faces(); ++f) render_face(c, f, bake_light);
@@ -269,6 +292,10 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
       if (req.time >= 0.0) {
         throw std::logic_error(planner.name() +
                                ": CaptureRequest::time is for preload captures only");
+      }
+      if (req.face_size != 0) {
+        throw std::logic_error(planner.name() +
+                               ": CaptureRequest::face_size is for preload captures only");
       }
       if (started < ctx.startable_captures) {
         planner.started(req.tag);

@@ -88,6 +88,10 @@ class ScenarioMotion;
 // Where the camera goes during the run, as its positions at the frames kept at least spacing_m
 // apart, and the last (the "route" the planners are told about: the level's playable path).
 std::vector<glm::dvec3> camera_route(const ScenarioMotion& motion, double spacing_m);
+// The centres of the cell_m x cell_m squares (x, y) the receivers visit at the run's frames,
+// in ascending (i, j) order, z the first visitor's height (WorldQueries::object_cells). Steps
+// its own motion, so the run's is untouched.
+std::vector<glm::dvec3> object_cells(const Scenario& scenario, const World& world, double cell_m);
 
 RunResult simulate(const Scenario& scenario, const World& world, const ReferenceTrack& reference,
                    Planner& planner, const SimulationOptions& options = {});

@@ -4,6 +4,8 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <set>
 #include <stdexcept>
 
 #include "policies/core/default_ambient.h"
@@ -11,6 +13,7 @@
 #include "sim/render/capture.h"
 #include "sim/run/run_output.h"
 #include "sim/run/simulator.h"
+#include "sim/scenario/scenario_motion.h"
 #include "sim/sh/sh_projection.h"
 #include "sim/world/illumination.h"
 #include "sim/world/lighting_model.h"
@@ -142,4 +145,59 @@ TEST_CASE("a capture time outside preload is refused", "[preload]") {
   late.time = 0.5;
   PreloadRecorder planner({}, {late});
   CHECK_THROWS_AS(simulate_without_reference(sc, world, planner), std::logic_error);
+}
+
+TEST_CASE("a preload capture may ask for its own face size; a run capture may not", "[preload]") {
+  const Scenario& sc = sunset();
+  const World& world = test::world_for(sc);
+  const glm::dvec3 at = world.road().empty() ? glm::dvec3(0.0, 0.0, 50.0)
+                                             : world.road().at(400.0) + glm::dvec3(0, 0, 2);
+  CaptureRequest fine;
+  fine.position = at;
+  fine.tag = 1;
+  fine.face_size = 24;
+  PreloadRecorder planner({fine});
+  const RunResult r = simulate_without_reference(sc, world, planner);
+  CHECK(r.summary.bake.captures == 1);
+  REQUIRE(planner.delivered.size() == 1);
+  LightingModel lighting(world);
+  const CubeMap cube = capture(Illumination(world, lighting.state_at(0.0)), at, 24);
+  CHECK(planner.delivered[0].sh == projector_for(24).project(cube));
+  const CubeMap coarse = capture(Illumination(world, lighting.state_at(0.0)), at, 16);
+  CHECK_FALSE(planner.delivered[0].sh == projector_for(16).project(coarse));
+
+  CaptureRequest late;
+  late.tag = 2;
+  late.face_size = 24;
+  PreloadRecorder refused({}, {late});
+  CHECK_THROWS_AS(simulate_without_reference(sc, world, refused), std::logic_error);
+}
+
+TEST_CASE("object_cells holds every square a receiver visits, and no other", "[preload]") {
+  // Slow reference: every receiver at every frame, its square; against the function's list.
+  const Scenario& sc = sunset();
+  const World& world = test::world_for(sc);
+  const double cell = 10.0;
+  const auto cells = object_cells(sc, world, cell);
+  std::set<std::pair<long, long>> expected;
+  ScenarioMotion motion(sc, world);
+  while (motion.next()) {
+    for (const auto& rc : motion.receivers()) {
+      expected.insert({static_cast<long>(std::floor(rc.position.x / cell)),
+                       static_cast<long>(std::floor(rc.position.y / cell))});
+    }
+  }
+  REQUIRE(cells.size() == expected.size());
+  auto it = expected.begin();
+  for (const auto& c : cells) {
+    CHECK(c.x == Approx((static_cast<double>(it->first) + 0.5) * cell));
+    CHECK(c.y == Approx((static_cast<double>(it->second) + 0.5) * cell));
+    ++it;
+  }
+  // Traffic on both carriageways, hundreds of metres beyond the camera's short route.
+  const glm::dvec3 start = camera_route(motion, 10.0).front();
+  double farthest = 0.0;
+  for (const auto& c : cells)
+    farthest = std::max(farthest, std::hypot(c.x - start.x, c.y - start.y));
+  CHECK(farthest > 200.0);
 }

@@ -144,6 +144,27 @@ TEST_CASE("baked corridor follows the route but not across a camera cut", "[bake
   CHECK(p->lookup({300.0, 0.0, 1.0}).fell_back);
 }
 
+TEST_CASE("baked covers the squares the lit objects visit, as themselves", "[baked]") {
+  // A route of 50 m and one object square 300 m down the road (traffic far ahead of the
+  // camera): the square is baked at the finest spacing, the road between is not.
+  FlatLevel level(0.0, 50.0);
+  level.world.object_cells = {{305.0, 5.0, 1.0}};
+  level.world.object_cell_m = 10.0;
+  auto p = baked_with("baked", {});
+  for (const auto& r : p->preload(level.context())) p->deliver({r.tag, r.position, uniform_sh(1)});
+  for (const double x : {300.5, 305.0, 309.5}) {
+    for (const double y : {0.5, 9.5}) {
+      INFO("at " << x << ", " << y);
+      CHECK(p->lookup({x, y, 1.0}).spacing_m == 2.0);
+    }
+  }
+  CHECK(p->lookup({200.0, 5.0, 1.0}).fell_back);
+  // Its own square plus one lattice cell around it, not a corridor: 30 m off it only the
+  // coarse levels that the route's corridor reaches, if any.
+  const LookupResult off = p->lookup({305.0, 40.0, 1.0});
+  CHECK((off.fell_back || off.spacing_m > 2.0));
+}
+
 TEST_CASE("baked lookup is trilinear: exact on a linear SH field", "[baked]") {
   // Ground at -0.5: the lattice planes z = 0, 2, 4 are free, z = -2 is 1.5 m deep (more than
   // half a cell: dropped). Each probe holds the field at its lattice point; inside a cell whose
