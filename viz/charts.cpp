@@ -81,6 +81,7 @@ struct RunPoint {
     double viewed_p95, viewed_pops, uniform_p95, uniform_pops;
   };
   std::vector<Seed> per_seed;
+  std::vector<std::string> seed_runs;  // every seed's run id
 };
 
 struct ScenarioInfo {
@@ -560,6 +561,7 @@ SweepData load_sweep_data(const std::string& dir) {
         ++counts[k][m];
       }
     }
+    d.runs[k].seed_runs.push_back(s.text(i, c_run));
     d.runs[k].per_seed.push_back({v[0], v[1], c_up95 >= 0 ? s.number(i, c_up95) : kNaN,
                                   c_upops >= 0 ? s.number(i, c_upops) : kNaN});
   }
@@ -1009,6 +1011,111 @@ std::vector<ChartPanel> series_panels(const RunPoint& run, bool speed_known,
   return {err, pops, live, cov};
 }
 
+// Whether a run's scenario document lights its world differently over time: a sun on a path,
+// or clouds, street lamps or fog that are not switched off.
+bool light_changes(const nlohmann::json& result) {
+  const nlohmann::json* w = &result;
+  for (const char* key : {"scenario", "document", "world"}) {
+    if (!w->is_object() || !w->contains(key)) return false;
+    w = &(*w)[key];
+  }
+  if (w->contains("sun") && (*w)["sun"].is_object() && (*w)["sun"].contains("path")) return true;
+  for (const char* key : {"clouds", "lamps", "fog"}) {
+    if (!w->contains(key) || !(*w)[key].is_object()) continue;
+    const auto& o = (*w)[key];
+    if (!o.contains("enabled") || o["enabled"] != false) return true;
+  }
+  return false;
+}
+
+TimeAxis time_axis(const nlohmann::json& result) {
+  TimeAxis a;
+  const nlohmann::json* p = &result;
+  for (const char* key : {"scenario", "document", "world", "sun", "path"}) {
+    if (!p->is_object() || !p->contains(key)) return a;
+    p = &(*p)[key];
+  }
+  if (p->value("type", "") != "solar") return a;
+  const std::string start = p->value("start", "00:00");
+  int h = 0, m = 0;
+  if (std::sscanf(start.c_str(), "%d:%d", &h, &m) < 1) return a;
+  a.start = h + m / 60.0;
+  a.scale = p->value("time_scale", 1.0) / 3600.0;
+  a.label = "local time of day (h)";
+  return a;
+}
+
+// Viewed and uniform mean error over the time of day (or the run's time) for every planner at
+// the sweep's nominal speed and the budget nearest 1 face per frame: each seed's series
+// (result.json) averaged over the seeds, in kTimeBins bins.
+std::vector<ChartPanel> light_panels(const SweepData& d, const ScenarioInfo& sc,
+                                     std::string* title) {
+  constexpr int kTimeBins = 120;
+  double scale = 1.0;
+  const auto runs = at_nominal_speed(sc, &scale);
+  double budget = kNaN;
+  for (const RunPoint* r : runs) {
+    if (!std::isfinite(budget) || std::fabs(r->faces_per_frame - 1.0) < std::fabs(budget - 1.0)) {
+      budget = r->faces_per_frame;
+    }
+  }
+  ChartPanel viewed, uniform;
+  viewed.title = "error where the player looks (viewed mean)";
+  uniform.title = "error at every receiver and normal (uniform mean)";
+  viewed.y_label = uniform.y_label = "ΔE00 (CIEDE2000)";
+  TimeAxis axis;
+  for (const RunPoint* r : runs) {
+    if (r->faces_per_frame != budget) continue;
+    std::vector<double> xs, sum_v, sum_u;
+    std::vector<int> n_v, n_u;
+    for (const auto& id : r->seed_runs) {
+      const fs::path rp = fs::path(d.dir) / "runs" / id / "result.json";
+      if (!fs::is_regular_file(rp)) continue;
+      const nlohmann::json result = load_json_file(rp.string());
+      axis = time_axis(result);
+      const auto& series = result.contains("series") ? result["series"] : nlohmann::json();
+      const auto t = json_series(series, "time");
+      const auto v = json_series(series, "de2000_viewed_mean");
+      const auto u = json_series(series, "de2000_mean");
+      if (t.empty() || v.size() != t.size() || u.size() != t.size()) continue;
+      const double t_end = t.back() > 0.0 ? t.back() : 1.0;
+      if (xs.empty()) {
+        xs.resize(kTimeBins);
+        for (int b = 0; b < kTimeBins; ++b) {
+          xs[static_cast<std::size_t>(b)] = axis.start + axis.scale * t_end * (b + 0.5) / kTimeBins;
+        }
+        sum_v.assign(kTimeBins, 0.0);
+        sum_u.assign(kTimeBins, 0.0);
+        n_v.assign(kTimeBins, 0);
+        n_u.assign(kTimeBins, 0);
+      }
+      for (std::size_t i = 0; i < t.size(); ++i) {
+        const int b = std::clamp(static_cast<int>(t[i] / t_end * kTimeBins), 0, kTimeBins - 1);
+        const auto bi = static_cast<std::size_t>(b);
+        if (std::isfinite(v[i])) sum_v[bi] += v[i], ++n_v[bi];
+        if (std::isfinite(u[i])) sum_u[bi] += u[i], ++n_u[bi];
+      }
+    }
+    if (xs.empty()) continue;
+    ChartSeries a = make_series(d, r->label, r->label), b = a;
+    a.marker = b.marker = 0;
+    for (int k = 0; k < kTimeBins; ++k) {
+      const auto bi = static_cast<std::size_t>(k);
+      a.x.push_back(xs[bi]);
+      a.y.push_back(n_v[bi] > 0 ? sum_v[bi] / n_v[bi] : kNaN);
+      b.x.push_back(xs[bi]);
+      b.y.push_back(n_u[bi] > 0 ? sum_u[bi] / n_u[bi] : kNaN);
+    }
+    viewed.series.push_back(std::move(a));
+    uniform.series.push_back(std::move(b));
+  }
+  viewed.x_label = uniform.x_label = axis.label;
+  viewed.y_from_zero = uniform.y_from_zero = true;
+  *title = sc.name + ": error as the light changes (" + fmt(budget) + " faces/frame, mean over " +
+           "seeds)";
+  return {viewed, uniform};
+}
+
 std::string safe_name(const std::string& s) {
   std::string out;
   for (char c : s) {
@@ -1020,6 +1127,10 @@ std::string safe_name(const std::string& s) {
 }
 
 }  // namespace
+
+bool scenario_light_changes(const nlohmann::json& result) { return light_changes(result); }
+
+TimeAxis light_time_axis(const nlohmann::json& result) { return time_axis(result); }
 
 std::vector<std::string> write_sweep_charts(const std::string& sweep_dir,
                                             const PlotOptions& options) {
@@ -1064,6 +1175,15 @@ std::vector<std::string> write_sweep_charts(const std::string& sweep_dir,
       e.panels = seed_panels(d, sc, &e.title);
       e.height_scale = 1.3;
       jobs.push_back(std::move(e));
+    }
+    {
+      const fs::path rj = fs::path(sweep_dir) / "runs" / sc.runs.front()->run / "result.json";
+      if (fs::is_regular_file(rj) && light_changes(load_json_file(rj.string()))) {
+        Job l{(charts / (base + "_light.png")).string(), "", {}, 2};
+        l.panels = light_panels(d, sc, &l.title);
+        l.shared_legend = true;
+        jobs.push_back(std::move(l));
+      }
     }
     const RunPoint* sr =
         chosen ? (chosen->scenario == sc.name ? chosen : nullptr) : sc.runs.front();

@@ -12,6 +12,8 @@
 //                                  planner, at the nominal speed and budget; only when the sweep
 //                                  has several seeds.
 // With several seeds, every other chart plots the mean over the seeds.
+//   <scenario>_light.png           (light that changes) viewed and uniform mean error over
+//                                  the time of day, every planner (see light_time_axis);
 //   <run>_series.png               one run's time series (error, pops, live probes, coverage):
 //                                  the first run of each scenario, or the run chosen.
 // Every planner keeps one style (colour, marker) in every chart of the sweep
@@ -19,6 +21,8 @@
 // the plots. Cost axes are logarithmic where the values span 8x or more.
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "sim/base/output_file.h"
 
@@ -30,6 +34,19 @@ struct PlotOptions {
   int width = 1200;
   int height = 800;
 };
+
+// The light chart (<scenario>_light.png, drawn when a scenario's world lights itself
+// differently over time: a sun on a path, clouds, lamps or fog) plots viewed and uniform mean
+// error against time for every planner, at the nominal speed and the budget nearest 1 face
+// per frame, averaged over the seeds. Whether a run's result.json document changes its light:
+bool scenario_light_changes(const nlohmann::json& result);
+// Its x axis: x = start + scale x t, the local time of day in hours for a sun on the solar path
+// (start, time_scale), else the run's time in seconds.
+struct TimeAxis {
+  double start = 0.0, scale = 1.0;
+  std::string label = "time (s)";
+};
+TimeAxis light_time_axis(const nlohmann::json& result);
 
 // Writes the charts; returns the paths written. Throws InputError (naming the file) for a
 // missing directory or summary.csv, missing columns, an unknown run id, or an output that

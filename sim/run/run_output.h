@@ -23,7 +23,9 @@ inline constexpr int kResultFormatVersion = 2;
 // 4: the ambisim planner's spacing and fades (forest_edge/flyover files changed themselves).
 // 5: ambisim ranks objects by need alone and stores fp16 by default.
 // 6: pops count only what the truth does not explain; viewed metrics; response time.
-inline constexpr int kResultsModelVersion = 6;
+// 7: lighting that changes (the world in time, the refresh rules, the lamp layer; baked bakes
+//    the objects' squares at its own face size).
+inline constexpr int kResultsModelVersion = 7;
 
 struct RunIdentity {
   std::string planner;

@@ -277,3 +277,75 @@ TEST_CASE("plot draws every planner of a 20-planner sweep in its own style", "[v
   }
   fs::remove_all(dir);
 }
+
+TEST_CASE("plot draws error over the time of day for light that changes", "[viz][charts]") {
+  // The time axis: a sun on the solar path from 06:30 at 360x gives the local time in hours.
+  const json solar = {
+      {"scenario",
+       {{"document",
+         {{"world",
+           {{"sun",
+             {{"path", {{"type", "solar"}, {"start", "06:30"}, {"time_scale", 360}}}}}}}}}}}};
+  const auto a = ambisim::light_time_axis(solar);
+  CHECK(a.start + a.scale * 10.0 == Approx(7.5));  // 10 s x 360 = 1 h
+  CHECK(a.label == "local time of day (h)");
+  CHECK(ambisim::scenario_light_changes(solar));
+  const json keyed = {
+      {"scenario", {{"document", {{"world", {{"sun", {{"path", {{"type", "keyframes"}}}}}}}}}}}};
+  CHECK(ambisim::light_time_axis(keyed).start + ambisim::light_time_axis(keyed).scale * 10.0 ==
+        Approx(10.0));
+  const json fog = {{"scenario", {{"document", {{"world", {{"fog", {{"colour", {1, 1, 1}}}}}}}}}}};
+  const json fog_off = {{"scenario", {{"document", {{"world", {{"fog", {{"enabled", false}}}}}}}}}};
+  const json fixed = {
+      {"scenario", {{"document", {{"world", {{"sun", {{"elevation_deg", 30}}}}}}}}}};
+  CHECK(ambisim::scenario_light_changes(fog));
+  CHECK_FALSE(ambisim::scenario_light_changes(fog_off));
+  CHECK_FALSE(ambisim::scenario_light_changes(fixed));
+
+  // A sweep of a day: the chart is drawn for it, not for a sweep whose light is fixed.
+  const auto dir = fs::temp_directory_path() / "ambisim_test_light_charts";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "runs");
+  std::ofstream s(dir / "summary.csv");
+  s << "run,scenario,planner,label,params,faces_per_frame,speed_scale,fps,seed,scenario_hash,"
+       "frames,duration_s,error.viewed.de2000.p95,pops.viewed.per_min,coverage.mean\n";
+  for (const char* planner : {"baked", "ambisim"}) {
+    for (int seed = 1; seed <= 2; ++seed) {
+      const std::string run = std::string("day__") + planner + "__s" + std::to_string(seed);
+      s << run << ",day," << planner << "," << planner << ",{},1,1,0," << seed
+        << ",abc,120,20,1,0,0.5\n";
+      json series = {{"time", json::array()},
+                     {"de2000_mean", json::array()},
+                     {"de2000_viewed_mean", json::array()}};
+      for (int f = 0; f < 200; ++f) {
+        series["time"].push_back(f * 0.1);
+        const double e = planner[0] == 'b' ? 0.5 * f * 0.1 : 1.0 + 0.1 * seed;
+        series["de2000_mean"].push_back(e);
+        series["de2000_viewed_mean"].push_back(0.5 * e);
+      }
+      fs::create_directories(dir / "runs" / run);
+      json result = solar;
+      result["series"] = series;
+      std::ofstream(dir / "runs" / run / "result.json") << result.dump();
+    }
+  }
+  s.close();
+  ambisim::PlotOptions opt;
+  opt.width = 900;
+  opt.height = 600;
+  const auto written = ambisim::write_sweep_charts(dir.string(), opt);
+  const auto light = dir / "charts" / "day_light.png";
+  REQUIRE(std::find(written.begin(), written.end(), light.string()) != written.end());
+  const auto img = ambisim::read_png(light.string());
+  CHECK(distinct_colours(img) > 40);
+  const auto ours = ambisim::known_planner_style("ambisim");
+  REQUIRE(ours.has_value());
+  CHECK(pixels_of(img, ours->rgb) > 100);
+  fs::remove_all(dir);
+
+  const auto plain = make_sweep_dir();
+  for (const auto& p : ambisim::write_sweep_charts(plain.string(), opt)) {
+    CHECK(p.find("_light.png") == std::string::npos);
+  }
+  fs::remove_all(plain);
+}
