@@ -12,7 +12,9 @@ of the statistics), and on how many seeds the planner beats the baseline on view
 A block `<!-- results-headline: SCENARIO bBUDGET PLANNER -->` becomes one sentence: PLANNER
 against the baseline on viewed and uniform p95 and pops, with intervals and wins.
 Only deterministic results go in (no measured times: those are docs/PERFORMANCE.md's), so
-the same sweep always gives the same doc. Text outside the blocks is kept. --check exits 1 (writing nothing) when the doc differs from
+the same sweep always gives the same doc. Text outside the blocks is kept, and so is a block
+whose scenario the sweep does not hold (the dynamic scenarios' tables come from their own
+sweep, scenarios/sweeps/dynamic.json). --check exits 1 (writing nothing) when the doc differs from
 what the runs give. Standard library only.
 """
 import argparse
@@ -26,6 +28,7 @@ import sys
 import tempfile
 
 METRICS = [
+    ("viewed ΔE00 mean", "error.viewed.de2000.mean"),
     ("viewed ΔE00 p95", "error.viewed.de2000.p95"),
     ("viewed pops/min", "pops.viewed.per_min"),
     ("uniform ΔE00 p95", "error.uniform.de2000.p95"),
@@ -34,7 +37,8 @@ METRICS = [
     ("coverage", "coverage.mean"),
 ]
 # Means over seeds of cost columns (no interval: they hardly vary, and they are costs).
-COSTS = [("faces used", "faces.used", "{:.0f}"), ("max bytes", "memory.max_bytes", "{:.0f}")]
+COSTS = [("faces used", "faces.used", "{:.0f}"), ("bake captures", "bake.captures", "{:.0f}"),
+         ("max bytes", "memory.max_bytes", "{:.0f}")]
 BLOCK = re.compile(r"(<!-- results-(table|headline): ([^>]*?) -->\n)(.*?)(<!-- end results-\2 -->)",
                    re.S)
 
@@ -157,7 +161,7 @@ def main():
         if p is None:
             sys.exit("results_tables: a headline block names no planner")
         parts = []
-        for name, m in METRICS[:4]:
+        for name, m in METRICS[1:5]:
             mine, base = stat(key, p, m), stat(key, a.baseline, m)
             if mine is None or base is None:
                 sys.exit(f"results_tables: no {m} for {p} or {a.baseline} in {key['scenario']}")
@@ -168,8 +172,12 @@ def main():
 
     doc = open(a.doc).read()
 
+    scenarios = {r["scenario"] for r in summary}
+
     def replace(m):
         key = parse_key(m.group(3))
+        if key["scenario"] not in scenarios:
+            return m.group(0)
         body = table(key) if m.group(2) == "table" else headline(key)
         return m.group(1) + body + m.group(5)
 

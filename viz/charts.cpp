@@ -1097,22 +1097,39 @@ std::vector<ChartPanel> light_panels(const SweepData& d, const ScenarioInfo& sc,
       }
     }
     if (xs.empty()) continue;
-    ChartSeries a = make_series(d, r->label, r->label), b = a;
-    a.marker = b.marker = 0;
-    for (int k = 0; k < kTimeBins; ++k) {
-      const auto bi = static_cast<std::size_t>(k);
-      a.x.push_back(xs[bi]);
-      a.y.push_back(n_v[bi] > 0 ? sum_v[bi] / n_v[bi] : kNaN);
-      b.x.push_back(xs[bi]);
-      b.y.push_back(n_u[bi] > 0 ? sum_u[bi] / n_u[bi] : kNaN);
-    }
-    viewed.series.push_back(std::move(a));
-    uniform.series.push_back(std::move(b));
+    // A line per run of bins with data: where no receiver is in view (the viewed mean is
+    // undefined) the line stops instead of bridging the gap. The first piece carries the name.
+    const auto add_pieces = [&](ChartPanel& panel, const std::vector<double>& sum,
+                                const std::vector<int>& n) {
+      ChartSeries piece = make_series(d, r->label, r->label);
+      piece.marker = 0;
+      bool named = false;
+      const auto flush = [&] {
+        if (piece.x.empty()) return;
+        if (named) piece.name.clear();
+        named = true;
+        panel.series.push_back(piece);
+        piece.x.clear();
+        piece.y.clear();
+      };
+      for (int k = 0; k < kTimeBins; ++k) {
+        const auto bi = static_cast<std::size_t>(k);
+        if (n[bi] == 0) {
+          flush();
+          continue;
+        }
+        piece.x.push_back(xs[bi]);
+        piece.y.push_back(sum[bi] / n[bi]);
+      }
+      flush();
+    };
+    add_pieces(viewed, sum_v, n_v);
+    add_pieces(uniform, sum_u, n_u);
   }
   viewed.x_label = uniform.x_label = axis.label;
   viewed.y_from_zero = uniform.y_from_zero = true;
-  *title = sc.name + ": error as the light changes (" + fmt(budget) + " faces/frame, mean over " +
-           "seeds)";
+  *title = sc.name + ": error as the light changes (budget " + fmt(budget) +
+           " faces/frame, mean over seeds)";
   return {viewed, uniform};
 }
 

@@ -153,7 +153,9 @@ class ShGraphCore {
   double shrink_since_ = -1.0;
 };
 
-extern template class ShGraphCore<2>;
-extern template class ShGraphCore<3>;
+// No `extern template class` here: the members are instantiated one by one in the files that
+// define them (shgraph_*.cpp), so an extern declaration of the whole class would leave the
+// inline members in this header (half, ...) without a definition wherever a compiler does not
+// inline them (clang's sanitizer build did not link).
 
 }  // namespace ambisim
