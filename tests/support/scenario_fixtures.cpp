@@ -40,4 +40,18 @@ const World& world_for(const Scenario& sc) {
   return *slot;
 }
 
+std::unique_ptr<Planner> make_test_planner(const std::string& name) {
+  std::vector<std::string> sets;
+  for (const auto& info : planner_catalogue()) {
+    if (info.name != name) continue;
+    for (const auto& p : info.params) {
+      if (p.name == "max_captures")
+        sets.push_back("max_captures=" + std::to_string(kTestBakeCaptures));
+      if (p.name == "bake_face_size")
+        sets.push_back("bake_face_size=" + std::to_string(kTestBakeFaceSize));
+    }
+  }
+  return make_planner(name, planner_params_from_cli(name, sets));
+}
+
 }  // namespace ambisim::test

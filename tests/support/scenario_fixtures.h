@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "policies/registry/registry.h"
 #include "sim/run/reference_track.h"
 #include "sim/scenario/scenario.h"
 #include "sim/world/world.h"
@@ -22,6 +23,14 @@ std::vector<Scenario> short_scenarios(double seconds, bool with_small_drive = fa
 // by its whole "world" section and its seed (a World carries its terrain and its lighting,
 // so two scenarios share one only when both are the same).
 const World& world_for(const Scenario& sc);
+
+// A planner by name at its defaults, except a bake (the baked planners' preload) bounded to
+// kTestBakeCaptures captures at kTestBakeFaceSize: a full bake of a scenario's route and
+// traffic is tens of thousands of 24x24 captures, minutes in every test that runs every
+// planner over every scenario; the contract holds for any bake size.
+inline constexpr std::int64_t kTestBakeCaptures = 3000;
+inline constexpr int kTestBakeFaceSize = 8;
+std::unique_ptr<Planner> make_test_planner(const std::string& name);
 
 // tests/data/small_drive.json with its world and its full (every-frame) reference.
 struct SmallDrive {

@@ -122,8 +122,8 @@ TEST_CASE("a recorded scripted camera replays to the same run, byte for byte", "
   const auto ref_b = compute_reference_track(replay.scenario, world);
   for (const auto& info : planner_catalogue()) {
     INFO(info.name);
-    auto pa = make_planner(info.name);
-    auto pb = make_planner(info.name);
+    auto pa = test::make_test_planner(info.name);
+    auto pb = test::make_test_planner(info.name);
     const RunResult a = simulate(scripted, world, *ref_a, *pa);
     const RunResult b = simulate(replay.scenario, world, *ref_b, *pb);
     CHECK(RunMetrics::to_json(a.summary).dump() == RunMetrics::to_json(b.summary).dump());
@@ -149,8 +149,8 @@ TEST_CASE(
   const auto ref_a = compute_reference_track(scripted, world);
   const auto ref_b = compute_reference_track(replay.scenario, world);
   for (const char* name : {"constant", "hemisphere", "nearest", "grid", "octree", "octree+vp"}) {
-    auto pa = make_planner(name);
-    auto pb = make_planner(name);
+    auto pa = test::make_test_planner(name);
+    auto pb = test::make_test_planner(name);
     const auto a = RunMetrics::to_json(simulate(scripted, world, *ref_a, *pa).summary).flatten();
     const auto b =
         RunMetrics::to_json(simulate(replay.scenario, world, *ref_b, *pb).summary).flatten();

@@ -29,8 +29,8 @@ TEST_CASE("without a reference every planner plans, captures and serves exactly 
   for (const auto& info : planner_catalogue()) {
     if (info.name == "oracle") continue;  // served from the reference (next test)
     INFO(info.name);
-    auto with_planner = make_planner(info.name);
-    auto without_planner = make_planner(info.name);
+    auto with_planner = test::make_test_planner(info.name);
+    auto without_planner = test::make_test_planner(info.name);
     const RunResult with = simulate(f.scenario, f.world, *f.reference, *with_planner);
     const RunResult without = simulate_without_reference(f.scenario, f.world, *without_planner);
 

@@ -265,8 +265,8 @@ TEST_CASE("moving the world 1e6 m from the origin keeps every planner's results"
   double worst_de = 0.0;
   for (const auto& info : planner_catalogue()) {
     INFO(info.name);
-    auto p0 = make_planner(info.name);
-    auto p1 = make_planner(info.name);
+    auto p0 = test::make_test_planner(info.name);
+    auto p1 = test::make_test_planner(info.name);
     const Summary a = simulate(base, w0, *ref0, *p0).summary;
     const Summary b = simulate(shifted, w1, *ref1, *p1).summary;
     CHECK(a.frames == b.frames);

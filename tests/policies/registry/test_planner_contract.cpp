@@ -37,7 +37,7 @@ TEST_CASE("every planner honours the contract on every scenario", "[contract]") 
     const auto reference = compute_reference_track(sc, world);
     for (const auto& info : planner_catalogue()) {
       INFO(info.name << " on " << sc.name);
-      auto planner = make_planner(info.name);
+      auto planner = test::make_test_planner(info.name);
       const RunResult r = simulate(sc, world, *reference, *planner);
       CHECK(r.summary.frames == static_cast<std::int64_t>(reference->frames.size()));
       if (!planner->ignores_budget()) {
@@ -55,7 +55,7 @@ TEST_CASE("every planner honours the contract on every scenario", "[contract]") 
         CHECK(lr.contributor_count <= 8);
       }
       // Deterministic: a fresh planner on the same inputs gives the same result, byte for byte.
-      auto again = make_planner(info.name);
+      auto again = test::make_test_planner(info.name);
       const RunResult r2 = simulate(sc, world, *reference, *again);
       CHECK(result_json(sc, {info.name, {}}, r).dump() ==
             result_json(sc, {info.name, {}}, r2).dump());
@@ -69,7 +69,7 @@ TEST_CASE("every planner holding no data answers the default ambient, never blac
   // an engine ships a default ambient for exactly this case.
   for (const auto& info : planner_catalogue()) {
     INFO(info.name);
-    auto planner = make_planner(info.name);
+    auto planner = test::make_test_planner(info.name);
     for (const glm::dvec3& p : {glm::dvec3(0.0), glm::dvec3(1e6, -1e6, 1e4)}) {
       const LookupResult lr = planner->lookup(p);
       CHECK(lr.fell_back);
