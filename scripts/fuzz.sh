@@ -14,7 +14,7 @@ build="$AMBISIM_ROOT/build-fuzz"
 
 # Not in the default package list: only fuzzing needs clang and its runtime libraries.
 ambisim_install_packages cmake ninja-build pkg-config libglm-dev libeigen3-dev \
-  nlohmann-json3-dev clang-14 libclang-rt-14-dev
+  nlohmann-json3-dev libpng-dev clang-14 libclang-rt-14-dev
 
 CC=clang-14 CXX=clang++-14 cmake -S "$AMBISIM_ROOT" -B "$build" -G Ninja \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo -DAMBISIM_FUZZ=ON -DAMBISIM_WITH_VIZ=OFF \
