@@ -224,14 +224,19 @@ TerrainLevel parse_terrain_level(ObjectReader& r, const LevelFileReader& read) {
     canopy_scale_m = r.number("canopy_scale_m", Range::closed(0.0, 200.0));
   } else if (r.has("canopy_scale_m")) {
     r.fail("canopy_scale_m", "only with a canopy map (/canopy)");
+  } else {
+    (void)r.raw("canopy_scale_m");  // listed among the valid keys
   }
   // Every key is read (and checked for its type) before any file is: a typo is reported
   // without touching the disk.
   (void)r.string("heightmap");
-  for (const char* k : {"albedo", "canopy", "water"}) {
-    if (r.has(k)) (void)r.string(k);
+  // (Reads with a fallback, so that an unknown key's message lists the optional ones too.)
+  for (const char* k : {"albedo", "canopy", "water"}) (void)r.string(k, "");
+  if (r.has("heightmap_size")) {
+    (void)r.numbers("heightmap_size", Range::closed(1.0, 1e9));
+  } else {
+    (void)r.raw("heightmap_size");
   }
-  if (r.has("heightmap_size")) (void)r.numbers("heightmap_size", Range::closed(1.0, 1e9));
   r.finish();
   const bool has_albedo = r.has("albedo"), has_water = r.has("water");
   read_heightmap(r, read, scale_m, offset_m, level);

@@ -1,6 +1,7 @@
 // Imported levels (terrain_level.h): heights, orientation, biomes and errors read back from
 // tiny PNGs written with libpng (sim/base/png_codec.h), and captures over them against the
 // analytic disc oracle of tests/sim/render/test_capture.cpp and the procedural flat world.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <map>
@@ -10,7 +11,9 @@
 
 #include "sim/base/json_reader.h"
 #include "sim/base/png_codec.h"
+#include "sim/colour/cielab.h"
 #include "sim/render/capture.h"
+#include "sim/world/level_export.h"
 #include "sim/world/terrain_level.h"
 #include "sim/world/world.h"
 
@@ -386,4 +389,68 @@ TEST_CASE("level: bad files and keys are InputErrors naming the file and the JSO
     CHECK(e.find('\n') == std::string::npos);
     INFO(e);
   }
+}
+
+TEST_CASE("level: an exported piece of a procedural world imports back within quantisation",
+          "[level]") {
+  WorldParams wp;
+  wp.size_m = {512.0, 512.0};
+  wp.cell_m = 2.0;
+  wp.seed = 3;  // tests/data/small_drive.json's world: forest in the north
+  wp.road.enabled = false;
+  {
+    // Lakes on the lowest 10 % of the ground, so the water mask has something to carry.
+    const World dry(wp);
+    std::vector<float> g(dry.nx() * dry.ny());
+    for (int iy = 0; iy < dry.ny(); ++iy) {
+      for (int ix = 0; ix < dry.nx(); ++ix) g[dry.cell_index(ix, iy)] = dry.column_ground(ix, iy);
+    }
+    std::nth_element(g.begin(), g.begin() + g.size() / 10, g.end());
+    wp.terrain.water_level_m = g[g.size() / 10];
+  }
+  const World src(wp);
+  const ExportedLevel ex = export_level(src, {0.0, 0.0}, {512.0, 512.0}, 1);
+  REQUIRE(ex.heightmap.width == 256);
+  REQUIRE(ex.heightmap.height == 256);
+  MemoryLevel m;
+  m.add("heightmap", "height.png", encode_png(ex.heightmap));
+  m.add("albedo", "albedo.png", encode_png(ex.albedo));
+  m.add("canopy", "canopy.png", encode_png(ex.canopy));
+  m.add("water", "water.png", encode_png(ex.water));
+  const nlohmann::json object = ex.level_object("levels/t");
+  for (const auto& [k, v] : object.items()) {
+    if (!m.doc.contains(k)) m.doc[k] = v;
+  }
+  const World w(params_for(m.parse(), ex.origin));
+  // Heights: half a code of the 16-bit range (plus float rounding); canopy: half an 8-bit
+  // code of its scale; albedo: half an 8-bit sRGB code, measured back in sRGB.
+  const double kHeightTol = 0.5 * ex.height_scale_m / 65535.0 + 1e-4;
+  const double kCanopyTol = 0.5 * ex.canopy_scale_m / 255.0 + 1e-4;
+  constexpr double kSrgbCodeTol = 0.5 / 255.0 + 1e-6;
+  int water = 0, forest = 0;
+  double worst_h = 0.0;
+  for (int iy = 0; iy < 256; ++iy) {
+    for (int ix = 0; ix < 256; ++ix) {
+      const int sx = ix, sy = iy;  // the same cell of the source
+      const double dh = std::abs(w.column_ground(ix, iy) - src.column_ground(sx, sy));
+      worst_h = std::max(worst_h, dh);
+      REQUIRE(dh <= kHeightTol);
+      const Biome b = src.cell_biome(sx, sy);
+      const Biome expect = b == Biome::Water || b == Biome::Forest ? b : Biome::Grass;
+      REQUIRE(w.cell_biome(ix, iy) == expect);
+      water += b == Biome::Water;
+      forest += b == Biome::Forest;
+      if (b == Biome::Forest) {
+        REQUIRE(std::abs((w.column_top(ix, iy) - w.column_ground(ix, iy)) -
+                         (src.column_top(sx, sy) - src.column_ground(sx, sy))) <= kCanopyTol);
+      }
+      for (int c = 0; c < 3; ++c) {
+        REQUIRE(std::abs(srgb_encode(w.cell_albedo(ix, iy)[c]) -
+                         srgb_encode(src.cell_albedo(sx, sy)[c])) <= kSrgbCodeTol);
+      }
+    }
+  }
+  INFO("worst height error " << worst_h << " m of " << kHeightTol);
+  CHECK(water > 0);
+  CHECK(forest > 0);
 }
