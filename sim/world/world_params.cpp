@@ -94,7 +94,9 @@ WorldParams parse_world_params(ObjectReader& r) {
   if (auto o = r.optional_object("lamps")) w.lamps = parse_lamps(*o);
   if (auto o = r.optional_object("fog")) w.fog = parse_fog(*o);
   if (w.lamps.enabled && !w.road.enabled) {
-    r.fail("lamps", "street lamps stand along the road: /world/road/enabled is false");
+    r.fail("lamps", w.level ? "street lamps stand along the road: an imported level "
+                              "(/world/level) has none"
+                            : "street lamps stand along the road: /world/road/enabled is false");
   }
   r.finish();
   return w;

@@ -470,6 +470,8 @@ level_case road_camera 'd["camera"] = {"type": "road", "speed_mps": 30}'
 level_error road_camera "road_camera.json: /camera/type: \"road\" needs the world's road (an imported level (/world/level) has no road)"
 level_case traffic 'd["receivers"]["traffic"] = {"rate_per_s": 5}'
 level_error traffic "traffic.json: /receivers/traffic: needs the world's road (an imported level (/world/level) has no road)"
+level_case lamps 'd["world"]["lamps"] = {"enabled": True}'
+level_error lamps "lamps.json: /world/lamps: street lamps stand along the road: an imported level (/world/level) has none"
 level_case road_landmark 'd["camera"]["points"][0] = {"landmark": "road.deepest_cutting", "offset": [0, 0, 50]}'
 level_error road_landmark "road_landmark.json: /camera/points/0"
 expect_error level_export_not_dir "--export-level: not a directory" "$tmp/nolevel" -- world "$good" --export-level "$tmp/nolevel"
