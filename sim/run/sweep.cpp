@@ -328,7 +328,10 @@ SweepReport run_sweep(const SweepSpec& spec, const std::string& out_dir,
   // The worlds are built now, one after the other, so that every run to do is checked against
   // its world (the road's length) before anything is written; after this the map is only read.
   auto world_key = [](const Scenario& sc) {
-    return sc.document.value("world", nlohmann::json::object()).dump();
+    std::string key = sc.document.value("world", nlohmann::json::object()).dump();
+    // An imported level: the same document may name files whose bytes differ.
+    if (sc.world.level) key += "#" + hex64(sc.world.level->content_hash);
+    return key;
   };
   std::map<std::string, std::shared_ptr<const World>> worlds;
   for (const RunSpec* r : todo) {

@@ -25,6 +25,8 @@ std::uint64_t hash_json(const nlohmann::json& j) {
 // The recordings a scenario reads (CSV files): their contents are part of its fingerprint, so a
 // changed file changes the hash even though the document naming it did not change.
 std::uint64_t with_recordings(std::uint64_t h, const Scenario& s) {
+  // An imported level's images likewise (their decoded contents).
+  if (s.world.level) h = hash_combine(h, s.world.level->content_hash);
   if (s.camera.recorded) h = hash_combine(h, s.camera.recorded->source.content_hash);
   if (s.receivers.recorded && s.receivers.recorded->tracks) {
     h = hash_combine(h, s.receivers.recorded->tracks->source.content_hash);
@@ -98,13 +100,13 @@ Scenario parse_scenario(const nlohmann::json& document, const std::string& file)
   root.finish();
   // Sections that depend on each other.
   if (!s.world.road.enabled) {
+    const std::string why = s.world.level ? "an imported level (/world/level) has no road"
+                                          : "/world/road/enabled is false";
     if (s.camera.type == CameraPathRecord::Type::road) {
-      throw InputError(file, "/camera/type",
-                       "\"road\" needs the world's road (/world/road/enabled is false)");
+      throw InputError(file, "/camera/type", "\"road\" needs the world's road (" + why + ")");
     }
     if (s.receivers.traffic) {
-      throw InputError(file, "/receivers/traffic",
-                       "needs the world's road (/world/road/enabled is false)");
+      throw InputError(file, "/receivers/traffic", "needs the world's road (" + why + ")");
     }
   }
   return s;

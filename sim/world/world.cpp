@@ -177,6 +177,10 @@ void World::allocate(const WorldParams& params) {
 
 World::World(const WorldParams& p) {
   allocate(p);
+  if (p.level) {
+    build_from_level(*p.level);
+    return;
+  }
   const TerrainParams& t = p.terrain;
   const int ob = octaves_for(t.wavelength_m, cell_);
   const int orr = octaves_for(0.55 * t.wavelength_m, cell_);
@@ -287,6 +291,40 @@ World::World(const WorldParams& p) {
       albedo_[k] = biome_albedo(biome_[k]) * tint;
     }
   }
+  finalize();
+}
+
+void World::build_from_level(const TerrainLevel& level) {
+  ground_ = level.ground_m;
+  // Water where the mask says (the heightmap gives its surface), else forest where there is
+  // canopy, else plain ground (Grass: the generator's default biome, no further classes are
+  // guessed from slope or height).
+  for (std::size_t k = 0; k < ground_.size(); ++k) {
+    Biome b = Biome::Grass;
+    float canopy = 0.0f;
+    if (!level.water.empty() && level.water[k] != 0) {
+      b = Biome::Water;
+    } else if (!level.canopy_m.empty() && level.canopy_m[k] > 0.0f) {
+      b = Biome::Forest;
+      canopy = level.canopy_m[k];
+    }
+    biome_[k] = b;
+    surface_[k] = ground_[k] + canopy;
+    albedo_[k] = level.albedo.empty() ? biome_albedo(b) : level.albedo[k];
+  }
+  // The far ground continues the level's border: the mean albedo (Rec. 709 luminance) of the
+  // edge cells, so that a level does not end in an arbitrary grey ring on the horizon.
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (int j = 0; j < ny_; ++j) {
+    for (int i = 0; i < nx_; ++i) {
+      if (i != 0 && j != 0 && i != nx_ - 1 && j != ny_ - 1) continue;
+      const Rgb& a = albedo_[cell_index(i, j)];
+      sum += 0.2126 * a.x + 0.7152 * a.y + 0.0722 * a.z;
+      ++count;
+    }
+  }
+  far_albedo_ = static_cast<float>(sum / static_cast<double>(count));
   finalize();
 }
 

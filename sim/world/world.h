@@ -1,6 +1,7 @@
 #pragma once
-// The procedural world: a heightfield of square cells ("columns") with biomes, a forest canopy
-// layer, lakes and a graded motorway, lit by the sun and sky (sim/world/lighting.h).
+// The world: a heightfield (generated, or imported from a game's level: terrain_level.h) of square
+// cells ("columns") with biomes, a forest canopy layer, lakes and a graded motorway, lit by the sun
+// and sky (sim/world/lighting.h).
 //
 // Frames: world x east, y north, z up, metres. The grid's south-west corner is at
 // params.origin; all grid math is done relative to it in double, so shifting the origin
@@ -34,7 +35,8 @@ struct LightingState;
 
 class World {
  public:
-  // Generates the world; deterministic and bit-identical for equal params.
+  // Generates the world (or builds it from params.level); deterministic and bit-identical
+  // for equal params.
   explicit World(const WorldParams& params);
 
   // Analytic oracle world (sun off, uniform sky of radiance `sky`): flat ground at z = 0, a
@@ -115,6 +117,8 @@ class World {
   // Shadow map, radiance, pyramid and extremes from heights, biomes and albedo.
   void finalize();
   void compute_shadow_heights();
+  // The cells of an imported level: its heights, water, forest and albedo (no road).
+  void build_from_level(const TerrainLevel& level);
 
   WorldParams params_;
   Lighting lighting_;

@@ -1,6 +1,8 @@
 #include "sim/world/world_params.h"
 
 #include <cmath>
+#include <memory>
+#include <string>
 
 #include "sim/base/json_reader.h"
 
@@ -46,8 +48,24 @@ RoadParams parse_road(ObjectReader& r) {
 WorldParams parse_world_params(ObjectReader& r) {
   WorldParams w;
   w.seed = r.seed("seed", w.seed);
-  w.size_m = r.vec2("size_m", w.size_m, Range::closed(16.0, 65536.0));
-  w.cell_m = r.number("cell_m", w.cell_m, Range::closed(0.05, 64.0));
+  if (auto o = r.optional_object("level")) {
+    // The level's images fix the grid and carry the terrain: the generator's keys would be
+    // silently ignored, so they are refused.
+    for (const char* key : {"size_m", "cell_m", "terrain"}) {
+      if (r.has(key)) {
+        r.fail(key, std::string("not with an imported level (/world/level sets the ") +
+                        (std::string(key) == "terrain" ? "terrain)" : "grid: use its cell_m)"));
+      }
+    }
+    auto level = std::make_shared<TerrainLevel>(parse_terrain_level(*o));
+    w.cell_m = level->cell_m;
+    w.size_m = {level->nx * level->cell_m, level->ny * level->cell_m};
+    w.level = std::move(level);
+  }
+  if (!w.level) {
+    w.size_m = r.vec2("size_m", w.size_m, Range::closed(16.0, 65536.0));
+    w.cell_m = r.number("cell_m", w.cell_m, Range::closed(0.05, 64.0));
+  }
   w.origin = r.vec2("origin", w.origin, Range::closed(-1e9, 1e9));
   for (int k = 0; k < 2; ++k) {
     const double n = w.size_m[k] / w.cell_m;
@@ -63,6 +81,12 @@ WorldParams parse_world_params(ObjectReader& r) {
   }
   if (auto o = r.optional_object("terrain")) w.terrain = parse_terrain(*o);
   if (auto o = r.optional_object("road")) w.road = parse_road(*o);
+  if (w.level) {
+    if (w.road.enabled && r.has("road")) {
+      r.fail("road", "an imported level (/world/level) has no road: leave out /world/road");
+    }
+    w.road.enabled = false;
+  }
   // The sky first: which sun keys apply depends on its model.
   if (auto o = r.optional_object("sky")) w.sky = parse_sky(*o);
   if (auto o = r.optional_object("sun")) w.sun = parse_sun(*o, w.sky.model);
@@ -70,7 +94,9 @@ WorldParams parse_world_params(ObjectReader& r) {
   if (auto o = r.optional_object("lamps")) w.lamps = parse_lamps(*o);
   if (auto o = r.optional_object("fog")) w.fog = parse_fog(*o);
   if (w.lamps.enabled && !w.road.enabled) {
-    r.fail("lamps", "street lamps stand along the road: /world/road/enabled is false");
+    r.fail("lamps", w.level ? "street lamps stand along the road: an imported level "
+                              "(/world/level) has none"
+                            : "street lamps stand along the road: /world/road/enabled is false");
   }
   r.finish();
   return w;

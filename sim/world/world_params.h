@@ -2,11 +2,13 @@
 // The validated description of a procedural world: everything World needs to regenerate it
 // bit-identically. Defaults give the standard 4 km hilly world with a motorway.
 #include <cstdint>
+#include <memory>
 
 #include <glm/vec2.hpp>
 
 #include "sim/colour/rgb.h"
 #include "sim/world/lighting_params.h"
+#include "sim/world/terrain_level.h"
 
 namespace ambisim {
 
@@ -49,6 +51,10 @@ struct WorldParams {
   CloudParams clouds;
   LampParams lamps;
   FogParams fog;
+  // An imported terrain ("level", terrain_level.h) instead of the generated one: it sets
+  // size_m and cell_m, and there is no road. Shared: the decoded maps are read once and
+  // copied with the params by pointer; null for the procedural world.
+  std::shared_ptr<const TerrainLevel> level;
 
   LightingParams lighting() const { return {sun, sky, clouds, lamps, fog}; }
 };

@@ -409,6 +409,76 @@ fi
 "$bin" sweep "$tmp/tiny.sweep.json" --out "$tmp/swept" -j1 >/dev/null 2>&1 || { echo "FAIL setup: sweep"; fail=1; }
 expect_error sweep_used_out_dir "result.json: already exists (use --resume" "$tmp/swept" -- sweep "$tmp/tiny.sweep.json" --out "$tmp/swept" -j1
 
+# ---------------------------------------------------------------- imported levels (images next to the scenario)
+# The shipped level and its flyover, copied; each case breaks one file or key.
+mkdir -p "$tmp/lv/levels"
+cp -r "$src/scenarios/levels/lakeside" "$tmp/lv/levels/"
+level_case() {
+  python3 - "$src/scenarios/level_flyover.json" "$tmp/lv/$1.json" "$2" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+L = d["world"]["level"]
+exec(sys.argv[3])
+json.dump(d, open(sys.argv[2], "w"))
+PY
+}
+level_error() {
+  expect_error "level_$1" "$2" "$tmp/lout_$1" -- run "$tmp/lv/$1.json" --planner constant --out "$tmp/lout_$1"
+}
+lv="$tmp/lv/levels/lakeside"
+printf 'this is not a png\n' >"$lv/text.png"
+head -c 3000 "$lv/height.png" >"$lv/truncated.png"
+head -c 1000 /dev/zero >"$lv/short.raw"
+# A 32 x 32 level: images of another size than the lakeside's 256 x 256.
+mkdir -p "$tmp/lv/levels/small"
+"$bin" world "$good" --export-level "$tmp/lv/levels/small" --region 0,0,64,64 >/dev/null 2>&1 ||
+  { echo "FAIL setup: world --export-level"; fail=1; }
+level_case ok ''
+"$bin" run "$tmp/lv/ok.json" --planner constant --out "$tmp/lout_ok" >/dev/null 2>&1 ||
+  { echo "FAIL setup: the copied level does not run"; fail=1; }
+level_case missing 'L["heightmap"] = "levels/lakeside/nope.png"'
+level_error missing "missing.json: /world/level/heightmap: no such file: $tmp/lv/levels/lakeside/nope.png"
+level_case not_png 'L["albedo"] = "levels/lakeside/text.png"'
+level_error not_png "not_png.json: /world/level/albedo: $tmp/lv/levels/lakeside/text.png: not a PNG file"
+level_case eight_bit 'L["heightmap"] = "levels/lakeside/water.png"'
+level_error eight_bit "eight_bit.json: /world/level/heightmap: $tmp/lv/levels/lakeside/water.png: 8-bit: a heightmap must be 16-bit greyscale"
+level_case sizes 'L["canopy"] = "levels/small/canopy.png"'
+level_error sizes "sizes.json: /world/level/canopy: $tmp/lv/levels/small/canopy.png: 32 x 32 pixels, but the heightmap is 256 x 256"
+level_case truncated 'L["heightmap"] = "levels/lakeside/truncated.png"'
+level_error truncated "truncated.json: /world/level/heightmap: $tmp/lv/levels/lakeside/truncated.png: corrupt or truncated PNG"
+level_case raw_count 'L["heightmap"] = "levels/lakeside/short.raw"; L["heightmap_size"] = [256, 256]'
+level_error raw_count "raw_count.json: /world/level/heightmap: $tmp/lv/levels/lakeside/short.raw: 1000 bytes, but a 256 x 256 RAW 16-bit heightmap has 131072"
+level_case raw_no_size 'L["heightmap"] = "levels/lakeside/short.raw"'
+level_error raw_no_size "raw_no_size.json: /world/level/heightmap: $tmp/lv/levels/lakeside/short.raw: a RAW heightmap needs /heightmap_size"
+level_case unknown_key 'L["albdo"] = L.pop("albedo")'
+level_error unknown_key "unknown_key.json: /world/level/albdo: unknown key"
+level_case zero_cell 'L["cell_m"] = 0'
+level_error zero_cell "zero_cell.json: /world/level/cell_m: must be > 0"
+level_case negative_cell 'L["cell_m"] = -4'
+level_error negative_cell "negative_cell.json: /world/level/cell_m: must be > 0"
+level_case no_scale 'del L["height_scale_m"]'
+level_error no_scale "no_scale.json: /world/level/height_scale_m: required number is missing"
+level_case canopy_scale_alone 'del L["canopy"]'
+level_error canopy_scale_alone "canopy_scale_alone.json: /world/level/canopy_scale_m: only with a canopy map"
+level_case with_size 'd["world"]["size_m"] = [1024, 1024]'
+level_error with_size "with_size.json: /world/size_m: not with an imported level"
+level_case with_terrain 'd["world"]["terrain"] = {"amplitude_m": 10}'
+level_error with_terrain "with_terrain.json: /world/terrain: not with an imported level"
+level_case with_road 'd["world"]["road"] = {"enabled": True}'
+level_error with_road "with_road.json: /world/road: an imported level (/world/level) has no road"
+level_case road_camera 'd["camera"] = {"type": "road", "speed_mps": 30}'
+level_error road_camera "road_camera.json: /camera/type: \"road\" needs the world's road (an imported level (/world/level) has no road)"
+level_case traffic 'd["receivers"]["traffic"] = {"rate_per_s": 5}'
+level_error traffic "traffic.json: /receivers/traffic: needs the world's road (an imported level (/world/level) has no road)"
+level_case lamps 'd["world"]["lamps"] = {"enabled": True}'
+level_error lamps "lamps.json: /world/lamps: street lamps stand along the road: an imported level (/world/level) has none"
+level_case road_landmark 'd["camera"]["points"][0] = {"landmark": "road.deepest_cutting", "offset": [0, 0, 50]}'
+level_error road_landmark "road_landmark.json: /camera/points/0"
+expect_error level_export_not_dir "--export-level: not a directory" "$tmp/nolevel" -- world "$good" --export-level "$tmp/nolevel"
+mkdir -p "$tmp/lvx"
+expect_error level_export_region "--region/--stride: the region must be a non-empty part of the world's grid" "$tmp/lvx" -- world "$good" --export-level "$tmp/lvx" --region 0,0,1e6,64
+expect_error level_export_existing "height.png: already exists (use --force" "$tmp/lv/levels/small" -- world "$good" --export-level "$tmp/lv/levels/small" --region 0,0,64,64
+
 # ---------------------------------------------------------------- world and probe
 world_only() { printf '%s' "$2" >"$tmp/$1.world.json"; }
 world_only bad_world_key '{"world": {"terrain": {"roughnes": 0.5}}}'
