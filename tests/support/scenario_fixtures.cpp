@@ -40,13 +40,12 @@ const World& world_for(const Scenario& sc) {
   return *slot;
 }
 
-std::unique_ptr<Planner> make_test_planner(const std::string& name) {
+std::unique_ptr<Planner> make_test_planner(const std::string& name, std::int64_t bake_captures) {
   std::vector<std::string> sets;
   for (const auto& info : planner_catalogue()) {
     if (info.name != name) continue;
     for (const auto& p : info.params) {
-      if (p.name == "max_captures")
-        sets.push_back("max_captures=" + std::to_string(kTestBakeCaptures));
+      if (p.name == "max_captures") sets.push_back("max_captures=" + std::to_string(bake_captures));
       if (p.name == "bake_face_size")
         sets.push_back("bake_face_size=" + std::to_string(kTestBakeFaceSize));
     }

@@ -30,7 +30,8 @@ const World& world_for(const Scenario& sc);
 // planner over every scenario; the contract holds for any bake size.
 inline constexpr std::int64_t kTestBakeCaptures = 3000;
 inline constexpr int kTestBakeFaceSize = 8;
-std::unique_ptr<Planner> make_test_planner(const std::string& name);
+std::unique_ptr<Planner> make_test_planner(const std::string& name,
+                                           std::int64_t bake_captures = kTestBakeCaptures);
 
 // tests/data/small_drive.json with its world and its full (every-frame) reference.
 struct SmallDrive {
