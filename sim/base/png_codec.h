@@ -27,6 +27,16 @@ struct PngSamples {
     return samples[(static_cast<std::size_t>(y) * width + x) * channels + c];
   }
   std::uint16_t max_value() const { return bit_depth == 16 ? 65535 : 255; }
+  // A w x h image of `channels` channels at `depth` bits, every sample 0.
+  static PngSamples blank(int w, int h, int channels, int depth) {
+    PngSamples img;
+    img.width = w;
+    img.height = h;
+    img.channels = channels;
+    img.bit_depth = depth;
+    img.samples.assign(static_cast<std::size_t>(w) * h * channels, 0);
+    return img;
+  }
 };
 
 // At most this many pixels per side are decoded (the world grid's own limit).

@@ -19,16 +19,6 @@ int lattice_index(double local_m, double cell_m, const char* what) {
   return static_cast<int>(std::lround(n));
 }
 
-PngSamples blank(int w, int h, int channels, int depth) {
-  PngSamples img;
-  img.width = w;
-  img.height = h;
-  img.channels = channels;
-  img.bit_depth = depth;
-  img.samples.assign(static_cast<std::size_t>(w) * h * channels, 0);
-  return img;
-}
-
 std::uint16_t quantise(double v, double max_code) {
   return static_cast<std::uint16_t>(std::clamp(std::round(v * max_code), 0.0, max_code));
 }
@@ -89,10 +79,10 @@ ExportedLevel export_level(const World& world, glm::dvec2 min, glm::dvec2 max, i
   out.height_offset_m = std::floor(g_min);
   out.height_scale_m = std::max(1.0, std::ceil(g_max) - out.height_offset_m);
   out.canopy_scale_m = std::max(1.0, std::ceil(c_max));
-  out.heightmap = blank(w, h, 1, 16);
-  out.albedo = blank(w, h, 3, 8);
-  out.canopy = blank(w, h, 1, 8);
-  out.water = blank(w, h, 1, 8);
+  out.heightmap = PngSamples::blank(w, h, 1, 16);
+  out.albedo = PngSamples::blank(w, h, 3, 8);
+  out.canopy = PngSamples::blank(w, h, 1, 8);
+  out.water = PngSamples::blank(w, h, 1, 8);
   for (std::size_t k = 0; k < n; ++k) {
     out.heightmap.samples[k] =
         quantise((ground[k] - out.height_offset_m) / out.height_scale_m, 65535.0);

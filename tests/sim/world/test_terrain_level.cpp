@@ -24,13 +24,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 PngSamples image(int w, int h, int channels, int depth) {
-  PngSamples img;
-  img.width = w;
-  img.height = h;
-  img.channels = channels;
-  img.bit_depth = depth;
-  img.samples.assign(static_cast<std::size_t>(w) * h * channels, 0);
-  return img;
+  return PngSamples::blank(w, h, channels, depth);
 }
 
 void set(PngSamples& img, int x, int y, std::uint16_t v, int c = 0) {
