@@ -25,6 +25,7 @@ struct RunOptions {
   std::string scenario;
   std::string planner = kDefaultPlanner;
   std::vector<std::string> set;
+  std::string preset;
   std::string out;
   std::string record_camera;
   bool force = false;
@@ -35,7 +36,7 @@ void run_run(const RunOptions& o) {
   const Overwrite ow = o.force ? Overwrite::allow : Overwrite::refuse;
   // Everything that can be refused is checked before the expensive part.
   const Scenario scenario = load_scenario(o.scenario);
-  const PlannerParams params = planner_params_from_cli(o.planner, o.set);
+  const PlannerParams params = planner_params_from_cli(o.planner, o.set, o.preset);
   auto planner = make_planner(o.planner, params);
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -98,6 +99,8 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("scenario", o->scenario, "scenario JSON file")->required();
   cmd->add_option("--planner", o->planner, "planner name (see `ambisim planners`)");
   cmd->add_option("--set", o->set, "planner parameter key=value (repeatable)");
+  cmd->add_option("--preset", o->preset,
+                  "a named parameter set under --set, e.g. tuned (`ambisim planners` lists them)");
   cmd->add_option("--out", o->out, "output directory (result.json, frames.csv)")->required();
   cmd->add_option("--record-camera", o->record_camera,
                   "also write the camera of every frame as CSV (time,x,y,z,cut)");

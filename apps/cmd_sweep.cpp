@@ -73,8 +73,9 @@ void run_sweep_command(const SweepCliOptions& o) {
   };
   std::signal(SIGINT, on_sigint);
   const PlannerFactory factory = [&spec](const SweepPlanner& p) {
-    return make_planner(p.name,
-                        planner_params_from_json(p.name, p.params, spec.file, p.params_pointer));
+    return make_planner(
+        p.name, planner_params_from_json(p.name, p.params, spec.file, p.params_pointer, p.preset,
+                                         p.preset_pointer));
   };
   const SweepReport report = run_sweep(spec, o.out, factory, opt);
   std::signal(SIGINT, SIG_DFL);

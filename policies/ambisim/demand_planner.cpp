@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "policies/core/default_ambient.h"
+#include "policies/core/solid_clearance.h"
 
 namespace ambisim {
 namespace {
@@ -320,11 +321,7 @@ double DemandPlanner::nearest_distance(const glm::dvec3& c, double* detail) cons
 }
 
 glm::dvec3 DemandPlanner::capture_point(const FrameContext& ctx, const glm::dvec3& p) const {
-  glm::dvec3 c = p;
-  if (ctx.world != nullptr && ctx.world->surface_height) {
-    c.z = std::max(c.z, ctx.world->surface_height(c.x, c.y) + 0.3);  // never inside a solid
-  }
-  return c;
+  return above_solids(ctx.world, p, kSolidClearance_m);  // never inside a solid
 }
 
 std::vector<CaptureRequest> DemandPlanner::plan(const FrameContext& ctx) {

@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "policies/core/default_ambient.h"
+#include "policies/core/solid_clearance.h"
 
 namespace ambisim {
 namespace {
@@ -65,6 +66,7 @@ std::vector<CaptureRequest> NearestProbePlanner::plan(const FrameContext& ctx) {
   if (predict_ && !ctx.camera_cut && std::isfinite(latency)) {
     target += ctx.camera_velocity * latency;
   }
+  target = above_solids(ctx.world, target, kSolidClearance_m);
 
   double d = std::numeric_limits<double>::infinity();
   nearest(target, &d);

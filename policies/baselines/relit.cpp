@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "policies/core/default_ambient.h"
+#include "policies/core/solid_clearance.h"
 
 namespace ambisim {
 namespace {
@@ -119,7 +120,7 @@ std::vector<CaptureRequest> RelitPlanner::plan(const FrameContext& ctx) {
   pending_.clear();  // anything neither started nor refused last frame never started
   camera_ = ctx.camera_position;
   if (ctx.startable_captures <= 0) return {};
-  const glm::dvec3 target = ctx.camera_position;
+  const glm::dvec3 target = above_solids(ctx.world, ctx.camera_position, kSolidClearance_m);
   double d = std::numeric_limits<double>::infinity();
   nearest(target, &d);
   for (const auto& [tag, f] : in_flight_) d = std::min(d, glm::distance(f.position, target));

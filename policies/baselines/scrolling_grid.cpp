@@ -77,8 +77,14 @@ bool ScrollingGridPlanner::has_data(const Key& k) const {
 
 void ScrollingGridPlanner::place_window(const glm::dvec3& focus, const FrameContext& ctx) {
   const WorldQueries* world = ctx.world;
+  // The solid top: terrain or canopy (a probe inside a crown sees its backfaces as one inside
+  // a hill does, L318).
+  const bool have_surface = world != nullptr && static_cast<bool>(world->surface_height);
   const bool have_ground = world != nullptr && static_cast<bool>(world->ground_height);
-  auto ground = [&](double x, double y) { return have_ground ? world->ground_height(x, y) : 0.0; };
+  auto ground = [&](double x, double y) {
+    if (have_surface) return world->surface_height(x, y);
+    return have_ground ? world->ground_height(x, y) : 0.0;
+  };
 
   Key c{std::llround(focus.x / spacing_m_), std::llround(focus.y / spacing_m_), centre_[2]};
   const double target_k =
@@ -105,8 +111,18 @@ void ScrollingGridPlanner::place_window(const glm::dvec3& focus, const FrameCont
           next.emplace(k, it->second);
           continue;
         }
+        // DDGI relocation and classification: a probe less than kClearance_m above the solid
+        // top moves up by at most half a vertical cell (its light still stands for its lattice
+        // point, as DDGI's relocated probes do); one deeper inside is inactive.
         const glm::dvec3 p = position_of(k);
-        if (p.z >= ground(p.x, p.y) + kClearance_m) next.emplace(k, Probe{});
+        const double lift = ground(p.x, p.y) + kClearance_m - p.z;
+        if (lift <= 0.5 * vertical_spacing_m_) {
+          Probe q;
+          q.lift_m = std::max(lift, 0.0);
+          next.emplace(k, q);
+        } else {
+          ++dropped_in_solids_;
+        }
       }
     }
   }
@@ -150,7 +166,8 @@ std::vector<CaptureRequest> ScrollingGridPlanner::plan(const FrameContext& ctx) 
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint64_t tag = next_tag_++;
     pending_[tag] = cands[i].key;
-    out.push_back({position_of(cands[i].key), tag});
+    const Key& k = cands[i].key;
+    out.push_back({position_of(k) + glm::dvec3(0.0, 0.0, probes_.at(k).lift_m), tag});
   }
   return out;
 }

@@ -8,10 +8,11 @@
 // the predicted focus with predict=true). Vertically the middle layer is the lattice level
 // nearest ground_height(centre) + height_m (default 1.5 m: where the camera and the objects
 // are), so the box reaches about one vertical cell below the ground and the lowest demand
-// points lie inside it. That level moves only when the target drifts more than 0.75 of a
-// vertical cell away (hysteresis, so rolling ground does not flush whole layers back and
-// forth). Probes lower than kClearance_m above the ground at their own x, y are inactive
-// (DDGI's probe classification: a probe inside the terrain sees only its backfaces): never
+// points lie inside it. "Ground" is the solid top: terrain or canopy. That level moves only
+// when the target drifts more than 0.75 of a vertical cell away (hysteresis, so rolling ground
+// does not flush whole layers back and forth). A probe lower than kClearance_m above the solid
+// top at its own x, y is captured up to half a vertical cell higher (DDGI's relocation), and
+// one deeper inside is inactive (DDGI's classification: it would see only backfaces): never
 // captured nor used, so a point just above the ground interpolates the probes above it.
 //
 // Refresh. Each frame plan() asks for min(startable, candidates) captures at the lattice
@@ -71,6 +72,8 @@ class ScrollingGridPlanner final : public Planner {
   Key window_min() const { return lo_; }
   Key window_max() const { return hi_; }
   std::size_t probe_count() const { return probes_.size(); }
+  // Lattice points classified inactive (too deep in terrain or canopy) as the window scrolled.
+  std::int64_t dropped_in_solids() const { return dropped_in_solids_; }
   bool has_data(const Key& k) const;
   glm::dvec3 position_of(const Key& k) const;
 
@@ -89,6 +92,7 @@ class ScrollingGridPlanner final : public Planner {
     double tau = 0.0;
     Sh9Rgb start;
     double start_time = 0.0;  // data time shown at `start`
+    double lift_m = 0.0;      // captured this far above its lattice point (out of a solid)
   };
 
   // Fade weight of the target (0: all start, 1: all target).
@@ -117,6 +121,7 @@ class ScrollingGridPlanner final : public Planner {
   Key centre_{0, 0, 0};
   Key lo_{0, 0, 0}, hi_{-1, -1, -1};  // empty until the first plan()
   std::uint64_t next_tag_ = 1;
+  std::int64_t dropped_in_solids_ = 0;
   std::map<Key, Probe> probes_;             // active lattice points of the window
   std::map<std::uint64_t, Key> pending_;    // returned by plan(), not yet started
   std::map<std::uint64_t, Key> in_flight_;  // started, not yet delivered

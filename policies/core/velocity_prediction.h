@@ -3,6 +3,8 @@
 // camera will be when a capture started now becomes usable, plus a look-ahead, and stretch the
 // high-resolution region along the motion. `route` uses the road spline as the game's
 // knowledge of where a car is going (thesis 7.5.3) instead of a straight line.
+#include <vector>
+
 #include <glm/vec3.hpp>
 
 #include "sim/planner.h"
@@ -28,6 +30,13 @@ struct Focus {
 // Predicted position after `horizon_s` seconds: straight-line, or along the road.
 glm::dvec3 predict_position(const FrameContext& ctx, double horizon_s, bool route,
                             double route_snap_m);
+
+// Points every spacing_m along the road from the camera's closest point to ahead_s seconds
+// ahead at its speed along the road, keeping its offset from the centre line; empty off the
+// road (farther than route_snap_m from it) or without one. What a game knows of where a car
+// goes (thesis L316).
+std::vector<glm::dvec3> road_ahead(const FrameContext& ctx, double ahead_s, double spacing_m,
+                                   double route_snap_m);
 
 // The focus for this frame. Horizon = ctx.capture_latency_s() + lookahead_s; on a camera cut
 // the prediction is dropped for that frame (the velocity says nothing about the jump).

@@ -11,6 +11,7 @@
 #include "policies/baselines/per_object.h"
 #include "policies/baselines/relit.h"
 #include "policies/baselines/scrolling_grid.h"
+#include "policies/registry/presets.h"
 #include "policies/thesis/octree.h"
 #include "policies/thesis/shgraph.h"
 #include "policies/thesis/shgraph2d.h"
@@ -53,16 +54,37 @@ const PlannerInfo& find_planner(const std::string& name, const std::string& file
   throw InputError(file, path, "unknown planner \"" + name + "\"; valid planners: " + valid);
 }
 
+namespace {
+
+// A preset's values for the parameters not given explicitly (explicit values win).
+void apply_preset(PlannerParams& p, const std::string& preset, const std::string& file,
+                  const std::string& pointer) {
+  if (preset.empty()) return;
+  const std::string where = "presets.json: /" + preset + "/" + p.planner() + "/params";
+  for (const auto& [k, v] : preset_params(p.planner(), preset, file, pointer).items()) {
+    if (!p.is_set(k)) p.set_json(k, v, where, "/" + k);
+  }
+}
+
+}  // namespace
+
 PlannerParams planner_params_from_json(const std::string& name, const nlohmann::json& j,
-                                       const std::string& file, const std::string& pointer) {
+                                       const std::string& file, const std::string& pointer,
+                                       const std::string& preset,
+                                       const std::string& preset_pointer) {
   const PlannerInfo& info = find_planner(name, file, pointer);
-  return PlannerParams::from_json(info.name, info.params, j, file, pointer);
+  PlannerParams p = PlannerParams::from_json(info.name, info.params, j, file, pointer);
+  apply_preset(p, preset, file, preset_pointer);
+  return p;
 }
 
 PlannerParams planner_params_from_cli(const std::string& name,
-                                      const std::vector<std::string>& assignments) {
+                                      const std::vector<std::string>& assignments,
+                                      const std::string& preset) {
   const PlannerInfo& info = find_planner(name, "--planner", "");
-  return PlannerParams::from_cli(info.name, info.params, assignments);
+  PlannerParams p = PlannerParams::from_cli(info.name, info.params, assignments);
+  apply_preset(p, preset, "--preset", "");
+  return p;
 }
 
 std::unique_ptr<Planner> make_planner(const std::string& name, const PlannerParams& params) {
@@ -74,6 +96,15 @@ std::string format_catalogue(const std::vector<PlannerInfo>& catalogue) {
   std::ostringstream os;
   for (const auto& info : catalogue) {
     os << info.name << ": " << info.description << "\n";
+    // The presets first: what `--preset NAME` sets (nothing: the defaults).
+    for (const auto& preset : preset_names()) {
+      std::string values;
+      for (const auto& [k, v] : preset_params(info.name, preset).items()) {
+        values += (values.empty() ? "" : ", ") + k + "=" +
+                  (v.is_string() ? v.get<std::string>() : v.dump());
+      }
+      os << "    preset " << preset << ": " << (values.empty() ? "the defaults" : values) << "\n";
+    }
     if (info.params.empty()) {
       os << "    (no parameters)\n";
       continue;
@@ -105,7 +136,12 @@ nlohmann::json catalogue_json(const std::vector<PlannerInfo>& catalogue) {
   for (const auto& info : catalogue) {
     nlohmann::json params = nlohmann::json::array();
     for (const auto& s : info.params) params.push_back(s.to_json());
-    out.push_back({{"name", info.name}, {"description", info.description}, {"params", params}});
+    nlohmann::json presets = nlohmann::json::object();
+    for (const auto& preset : preset_names()) presets[preset] = preset_params(info.name, preset);
+    out.push_back({{"name", info.name},
+                   {"description", info.description},
+                   {"params", params},
+                   {"presets", presets}});
   }
   return out;
 }

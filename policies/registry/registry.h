@@ -22,11 +22,15 @@ const std::vector<PlannerInfo>& planner_catalogue();
 const PlannerInfo& find_planner(const std::string& name, const std::string& file = "",
                                 const std::string& path = "");
 
-// Parameters for `name` from a JSON object or `--set key=value` strings (validated now).
+// Parameters for `name` from a JSON object or `--set key=value` strings (validated now), over
+// a preset's values when `preset` is given (presets.h; explicit values win).
 PlannerParams planner_params_from_json(const std::string& name, const nlohmann::json& j,
-                                       const std::string& file, const std::string& pointer);
+                                       const std::string& file, const std::string& pointer,
+                                       const std::string& preset = "",
+                                       const std::string& preset_pointer = "");
 PlannerParams planner_params_from_cli(const std::string& name,
-                                      const std::vector<std::string>& assignments);
+                                      const std::vector<std::string>& assignments,
+                                      const std::string& preset = "");
 
 // Builds `name`. `params` may be default-constructed (all defaults) or built for this planner;
 // its explicit values are re-validated against this planner's specs either way.

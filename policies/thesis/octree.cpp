@@ -135,9 +135,29 @@ bool OctreePlanner::corner_has_data(const LatticeKey& k) const {
 
 bool OctreePlanner::complete(const NodeKey& n) const {
   for (int i = 0; i < 8; ++i) {
-    if (!corner_has_data(lattice_.corner(n, i))) return false;
+    const LatticeKey k = lattice_.corner(n, i);
+    if (!corner_has_data(k) && !known_inside_solid(k, n.depth)) return false;
   }
   return true;
+}
+
+bool OctreePlanner::inside_solid(const LatticeKey& k, int depth) {
+  auto it = lifts_.find(k);
+  if (it == lifts_.end()) {
+    const double lift = capture_position(k).z - lattice_.position(k).z;
+    it = lifts_.emplace(k, SolidCheck{lift, false}).first;
+  }
+  if (it->second.lift_m <= 0.5 * lattice_.size_m(depth)) return false;
+  if (!it->second.dropped) {
+    it->second.dropped = true;
+    ++dropped_in_solids_;
+  }
+  return true;
+}
+
+bool OctreePlanner::known_inside_solid(const LatticeKey& k, int depth) const {
+  const auto it = lifts_.find(k);
+  return it != lifts_.end() && it->second.lift_m > 0.5 * lattice_.size_m(depth);
 }
 
 bool OctreePlanner::needs_capture(const LatticeKey& k) const {
@@ -160,7 +180,7 @@ std::optional<std::pair<LatticeKey, NodeKey>> OctreePlanner::search(const glm::d
     std::sort(order.begin(), order.end());
     for (const auto& [d, i] : order) {
       const LatticeKey k = lattice_.corner(node, i);
-      if (needs_capture(k)) return std::make_pair(k, node);
+      if (needs_capture(k) && !inside_solid(k, node.depth)) return std::make_pair(k, node);
     }
     if (is_split(node)) {
       node = lattice_.node_at(target, node.depth + 1);
@@ -469,9 +489,20 @@ LookupResult OctreePlanner::lookup_trilinear(const glm::dvec3& p) const {
   const glm::dvec3 t =
       glm::clamp((p - lattice_.min_position(*best)) / lattice_.size_m(best->depth), 0.0, 1.0);
   Blend b;
+  // Corners inside a solid hold no set: the others' weights are renormalised, with a floor so
+  // a point at a dropped corner still gets an answer.
+  std::array<const Corner*, 8> cs{};
+  bool some_dropped = false;
   for (int i = 0; i < 8; ++i) {
-    const Corner& c = corners_.at(lattice_.corner(*best, i));
-    b.add(c.sh, c.data_tag, c.data_time, trilinear_weight(t, i));
+    const auto it = corners_.find(lattice_.corner(*best, i));
+    if (it != corners_.end() && it->second.has_data) cs[static_cast<std::size_t>(i)] = &it->second;
+    some_dropped = some_dropped || cs[static_cast<std::size_t>(i)] == nullptr;
+  }
+  for (int i = 0; i < 8; ++i) {
+    const Corner* c = cs[static_cast<std::size_t>(i)];
+    if (c == nullptr) continue;
+    const double w = trilinear_weight(t, i);
+    b.add(c->sh, c->data_tag, c->data_time, some_dropped ? std::max(w, 1e-6) : w);
   }
   return b.finish(lattice_.size_m(best->depth), false);
 }
@@ -542,6 +573,7 @@ PlannerStats OctreePlanner::stats() const {
       split_.size() * (sizeof(NodeKey) + kTreeNodeOverhead) +
       tags_.size() * (sizeof(std::pair<std::uint64_t, LatticeKey>) + kTreeNodeOverhead) +
       pending_.size() * (sizeof(std::uint64_t) + kTreeNodeOverhead) +
+      lifts_.size() * (sizeof(std::pair<LatticeKey, SolidCheck>) + kTreeNodeOverhead) +
       (recently_removed_.size() + removed_since_prune_.size()) *
           (sizeof(std::pair<LatticeKey, double>) + kTreeNodeOverhead) +
       sizeof(*this);

@@ -103,6 +103,11 @@ class OctreePlanner final : public Planner {
   };
   enum class Lookup { trilinear, octant };
 
+ public:
+  // Corners never captured because they stood too deep inside a solid.
+  std::int64_t dropped_in_solids() const { return dropped_in_solids_; }
+
+ private:
   void init_root(const FrameContext& ctx);
   // The deepest existing node containing p (p inside the root).
   NodeKey leaf_at(const glm::dvec3& p) const;
@@ -113,6 +118,11 @@ class OctreePlanner final : public Planner {
   // corner to capture and the node asking for it.
   std::optional<std::pair<LatticeKey, NodeKey>> search(const glm::dvec3& target);
   glm::dvec3 capture_position(const LatticeKey& k) const;
+  // A corner whose capture would move out of a solid by more than half the cell of the node
+  // asking (L318): never captured, and counted as present for the node's completeness (DDGI's
+  // probe classification). The lift is computed once per corner (search()).
+  bool inside_solid(const LatticeKey& k, int depth);
+  bool known_inside_solid(const LatticeKey& k, int depth) const;
   void enforce_cap();
   void expire();
   // Drops a corner's set (and the entry unless a capture for it is in flight).
@@ -154,6 +164,12 @@ class OctreePlanner final : public Planner {
   std::set<std::uint64_t> pending_;                // returned by plan(), not yet started
   std::map<LatticeKey, double> recently_removed_;  // for rerequested_within_1s
   std::set<LatticeKey> removed_since_prune_;
+  struct SolidCheck {
+    double lift_m = 0.0;   // capture_position's move out of terrain or canopy
+    bool dropped = false;  // refused at least once
+  };
+  std::map<LatticeKey, SolidCheck> lifts_;  // every corner search() examined
+  std::int64_t dropped_in_solids_ = 0;
   Counters counters_;
 };
 

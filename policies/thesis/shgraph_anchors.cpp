@@ -16,6 +16,11 @@ AnchorEntry* ShGraphCore<Dim>::acquire(const Key& key) {
   if (inserted) {
     it->second.position = anchor_position(key);
     it->second.capture = capture_position(it->second.position);
+    it->second.relocation_m = it->second.capture.z - it->second.position.z;
+    // Its light is attributed where it was captured, never at the nominal point inside a solid
+    // (L318). The sheet weighs horizontal distances only, and moves sets only vertically.
+    for (int a = 0; a < Dim; ++a) it->second.at_q[a] = static_cast<double>(key[a]);
+    if constexpr (Dim == 3) it->second.at_q.z = (it->second.capture.z - origin_.z) / h_;
   }
   ++it->second.refs;
   return &it->second;
@@ -23,6 +28,7 @@ AnchorEntry* ShGraphCore<Dim>::acquire(const Key& key) {
 
 template <int Dim>
 void ShGraphCore<Dim>::forget(AnchorEntry* e) {
+  ++forgotten_;
   if (e->anchor.has_coefficients()) by_age_.erase({e->anchor.creation_time(), e});
   if (e->anchor.fading()) std::erase(fading_, e);
 }

@@ -31,8 +31,11 @@ namespace ambisim {
 // The anchor plus where it stands and how many nodes share it (the centre chain).
 struct AnchorEntry {
   CoefficientAnchor anchor;
-  glm::dvec3 position{0.0};  // nominal: the node centre (on a sheet: at the sheet height)
-  glm::dvec3 capture{0.0};   // where it is captured (lifted out of solids, D14)
+  glm::dvec3 position{0.0};   // nominal: the node centre (on a sheet: at the sheet height)
+  glm::dvec3 capture{0.0};    // where it is captured and its light is attributed (D14)
+  glm::dvec3 at_q{0.0};       // capture, in key units (h) from the origin: what lookups weigh by
+  double relocation_m = 0.0;  // capture.z - position.z: how far it was moved out of a solid
+  bool dropped_in_solid = false;  // refused once for standing too deep inside a solid (L318)
   std::int32_t refs = 0;
 };
 
@@ -84,6 +87,9 @@ class ShGraphCore {
   // The anchor at a node centre (null: no node there at any depth).
   const CoefficientAnchor* anchor_at(const glm::dvec3& p, int depth) const;
   std::int64_t anchor_count() const { return static_cast<std::int64_t>(anchors_.size()); }
+  // Sets never captured because they stood deeper inside terrain or canopy than the relocation
+  // allows (each saves a capture's faces).
+  std::int64_t dropped_in_solids() const { return dropped_in_solids_; }
 
  private:
   using Q = std::array<double, Dim>;  // a position in h units from the origin
@@ -150,6 +156,14 @@ class ShGraphCore {
   const WorldQueries* world_ = nullptr;
   double now_ = 0.0;
   int d_eff_ = -1;
+  std::int64_t dropped_in_solids_ = 0;
+  // The budget fill's memo (plan()): its last scan found nothing, from this cell, with this
+  // many anchors forgotten so far.
+  bool fill_empty_ = false;
+  Key fill_key_{};
+  int fill_level_ = 0;
+  std::int64_t forgotten_ = 0;
+  std::int64_t fill_forgotten_ = 0;
   double shrink_since_ = -1.0;
 };
 

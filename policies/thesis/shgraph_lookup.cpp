@@ -62,7 +62,7 @@ bool ShGraphCore<Dim>::lookup_into(const glm::dvec3& p, LookupResult& r) const {
         double d2 = 0.0;
         int oct = 0;
         for (int a = 0; a < Dim; ++a) {
-          const double dq = static_cast<double>(nodes_[j].key[a]) - q[a];
+          const double dq = e->at_q[a] - q[a];
           d2 += dq * dq;
           if (dq >= 0.0) oct |= 1 << a;
         }
@@ -80,7 +80,7 @@ bool ShGraphCore<Dim>::lookup_into(const glm::dvec3& p, LookupResult& r) const {
         double d2 = 0.0;
         int oct = 0;
         for (int a = 0; a < Dim; ++a) {
-          const double dq = static_cast<double>(nd.key[a]) - q[a];
+          const double dq = e->at_q[a] - q[a];
           d2 += dq * dq;
           oct |= (dq >= 0.0 ? 1 : 0) << a;
         }

@@ -66,13 +66,15 @@ glm::dvec3 ShGraphCore<Dim>::anchor_position(const Key& key) const {
 
 template <int Dim>
 glm::dvec3 ShGraphCore<Dim>::capture_position(const glm::dvec3& nominal) const {
+  // Out of terrain and canopy alike (L318): a cube map rendered inside a crown sees its
+  // backfaces just as one inside a hill. Whether the move is small enough for the cell to keep
+  // the set is decided where the cell's size is known (plan()).
   glm::dvec3 c = nominal;
   if (world_ == nullptr) return c;
-  if constexpr (Dim == 3) {
-    if (world_->surface_height) c.z = std::max(c.z, world_->surface_height(c.x, c.y) + s_.lift_m);
-  } else {
-    // The sheet stays under the canopy (D12); only the terrain itself is solid for it.
-    if (world_->ground_height) c.z = std::max(c.z, world_->ground_height(c.x, c.y) + 0.5);
+  if (world_->surface_height) {
+    c.z = std::max(c.z, world_->surface_height(c.x, c.y) + s_.lift_m);
+  } else if (world_->ground_height) {
+    c.z = std::max(c.z, world_->ground_height(c.x, c.y) + s_.lift_m);
   }
   return c;
 }

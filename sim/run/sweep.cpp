@@ -160,12 +160,14 @@ SweepSpec parse_sweep(const nlohmann::json& doc, const std::string& path) {
       if (!p.label.empty() && !safe_path_component(p.label)) {
         pr.fail("label", kComponentRule);
       }
+      p.preset = pr.string("preset", "");
+      p.preset_pointer = at + "/preset";
       const nlohmann::json* params = pr.raw("params");
       p.params = params ? *params : nlohmann::json::object();
       if (!p.params.is_object()) throw InputError(path, at + "/params", "must be an object");
       pr.finish();
     }
-    if (p.label.empty()) p.label = p.name;
+    if (p.label.empty()) p.label = p.preset.empty() ? p.name : p.name + "_" + p.preset;
     p.params_pointer = at + "/params";
     if (!labels.insert(p.label).second) {
       throw InputError(path, at, "duplicate planner label \"" + p.label + "\" (add \"label\")");

@@ -24,6 +24,8 @@ struct SweepPlanner {
   std::string label;           // unique within the sweep; defaults to the name
   nlohmann::json params;       // object, validated by the planner factory
   std::string params_pointer;  // JSON path of the params in the sweep file (for errors)
+  std::string preset;          // a named parameter set under params ("" = none), e.g. "tuned"
+  std::string preset_pointer;  // its JSON path
 };
 
 struct SweepSpec {

@@ -309,6 +309,7 @@ expect_error record_camera_exists "kept_flight.csv: already exists (use --force"
 expect_error unknown_planner "valid planners: oracle" "$tmp/out_unknown_planner" -- run "$good" --planner octopus --out "$tmp/out_unknown_planner"
 expect_error unknown_param "valid parameters" "$tmp/out_unknown_param" -- run "$good" --planner nearest --set spacing=3 --out "$tmp/out_unknown_param"
 expect_error bad_param "must be a number > 0" "$tmp/out_bad_param" -- run "$good" --planner nearest --set spacing_m=-1 --out "$tmp/out_bad_param"
+expect_error unknown_preset "--preset: unknown preset \"tunde\"; valid presets: tuned" "$tmp/out_unknown_preset" -- run "$good" --planner nearest --preset tunde --out "$tmp/out_unknown_preset"
 expect_error set_without_value "--set spacing_m: expected key=value" "$tmp/out_set_without_value" -- run "$good" --planner nearest --set spacing_m --out "$tmp/out_set_without_value"
 expect_error missing_out "--out is required" "$tmp/out_missing_out" -- run "$good"
 
@@ -345,6 +346,7 @@ sweep_file unknown_in_planner '{"scenarios": ["SCEN"], "planners": [{"name": "ne
 sweep_file unknown_planner '{"scenarios": ["SCEN"], "planners": ["constant", "octopus"]}'
 sweep_file unknown_param '{"scenarios": ["SCEN"], "planners": [{"name": "nearest", "params": {"spacing": 3}}]}'
 sweep_file bad_param '{"scenarios": ["SCEN"], "planners": [{"name": "nearest", "params": {"spacing_m": -1}}]}'
+sweep_file unknown_preset '{"scenarios": ["SCEN"], "planners": [{"name": "nearest", "preset": "tunde"}]}'
 sweep_file params_not_object '{"scenarios": ["SCEN"], "planners": [{"name": "nearest", "params": [1]}]}'
 sweep_file no_scenarios '{"planners": ["constant"]}'
 sweep_file missing_scenario '{"scenarios": ["nope.json"], "planners": ["constant"]}'
@@ -376,6 +378,7 @@ sweep_error unknown_in_planner "unknown_in_planner.sweep.json: /planners/0/parms
 sweep_error unknown_planner "unknown_planner.sweep.json: /planners/1: unknown planner \"octopus\"; valid planners: oracle"
 sweep_error unknown_param "unknown_param.sweep.json: /planners/0/params/spacing"
 sweep_error bad_param "bad_param.sweep.json: /planners/0/params/spacing_m"
+sweep_error unknown_preset "unknown_preset.sweep.json: /planners/0/preset: unknown preset \"tunde\"; valid presets: tuned"
 sweep_error params_not_object "params_not_object.sweep.json: /planners/0/params: must be an object"
 sweep_error no_scenarios "no_scenarios.sweep.json: /scenarios: required list of scenario files is missing"
 sweep_error missing_scenario "missing_scenario.sweep.json: /scenarios/0: no such file"

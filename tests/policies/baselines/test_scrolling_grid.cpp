@@ -239,21 +239,29 @@ TEST_CASE("grid: a cell without data answers with the nearest probe, as a fallba
   CHECK(g.lookup({16.0, 0.0, 8.0}).sh.c[0].x == Approx(3.0 - 2.0 * (1.0 - std::exp(-1.0))));
 }
 
-TEST_CASE("grid: probes inside the terrain are never captured; lookups use those above",
+TEST_CASE("grid: probes in the terrain move up by half a layer at most, or are never captured",
           "[baselines]") {
-  // Defaults vertically: 2 m layers, middle nearest 1.5 m above flat ground -> z = 0, 2, 4;
-  // z = 0 is in the ground.
-  auto g = make_grid({"nx=3", "ny=3", "blend_s=0"});
+  // 2 m layers, the middle one nearest the ground (height_m = 0) over flat ground: z = -2, 0,
+  // 2. z = 0 is 0.25 m short of the clearance: captured 0.25 m up (DDGI relocation, within half
+  // a layer); z = -2 would have to move 2.25 m: inactive (classification).
+  auto g = make_grid({"nx=3", "ny=3", "blend_s=0", "height_m=0"});
   const auto req = capture_all(g, frame_at(0.0, {0, 0, 1.5}, 1000),
                                [](const glm::dvec3& p) { return flat_sh(1.0f + 0.5f * p.z); });
   CHECK(req.size() == 18);
-  for (const auto& r : req) CHECK(r.position.z >= 2.0);
-  CHECK(g.window_min()[2] == 0);
-  // A receiver 1 m above the ground interpolates the 2 m layer alone (renormalised).
+  int relocated = 0;
+  for (const auto& r : req) {
+    CHECK((r.position.z == 2.0 || r.position.z == ScrollingGridPlanner::kClearance_m));
+    relocated += r.position.z < 1.0 ? 1 : 0;
+  }
+  CHECK(relocated == 9);
+  CHECK(g.window_min()[2] == -1);
+  CHECK(g.dropped_in_solids() == 9);
+  // A receiver 1 m above the ground interpolates both layers, the relocated one standing for
+  // its lattice point: (1 + 0.5 * 0.25) / 2 + 2 / 2.
   const LookupResult r = g.lookup({3.0, 1.0, 1.0});
   CHECK_FALSE(r.fell_back);
-  CHECK(r.contributor_count == 4);
-  CHECK(r.sh.c[0].x == Approx(2.0f));
+  CHECK(r.contributor_count == 8);
+  CHECK(r.sh.c[0].x == Approx(0.5 * (1.0 + 0.5 * 0.25) + 0.5 * 2.0));
   PlannerStats s = g.stats();
   CHECK(s.live_probes == 18);
   CHECK(s.nodes == 18);

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "policies/core/planner_params.h"
+#include "policies/registry/presets.h"
 #include "policies/registry/registry.h"
 #include "sim/base/input_error.h"
 
@@ -197,4 +198,36 @@ TEST_CASE("the catalogue renders as text with every parameter", "[policies]") {
   REQUIRE(j.size() == kExpectedPlanners.size());
   CHECK(j[3]["name"] == "nearest");
   CHECK(j[3]["params"][1]["allowed"] == "[1, 1000000000]");
+}
+
+TEST_CASE("every planner has a tuned preset, and explicit values win over it", "[policies]") {
+  CHECK(preset_names() == std::vector<std::string>{"tuned"});
+  for (const auto& info : planner_catalogue()) {
+    INFO(info.name);
+    const nlohmann::json& tuned = preset_params(info.name, "tuned");
+    REQUIRE(tuned.is_object());
+    // Every value is a valid parameter of the planner, and the planner builds with them.
+    const PlannerParams p = planner_params_from_json(info.name, nlohmann::json::object(), "t.json",
+                                                     "/params", "tuned", "/preset");
+    for (const auto& [k, v] : tuned.items()) {
+      CHECK(p.is_set(k));
+      CHECK(p.to_json().at(k) == v);
+    }
+    CHECK(make_planner(info.name, p) != nullptr);
+    // An explicit value overrides the preset's.
+    if (!info.params.empty()) {
+      const ParamSpec& first = info.params.front();
+      const PlannerParams q =
+          planner_params_from_json(info.name, nlohmann::json{{first.name, first.default_value}},
+                                   "t.json", "/params", "tuned", "/preset");
+      CHECK(q.to_json().at(first.name) == first.default_value);
+    }
+  }
+  try {
+    planner_params_from_cli("nearest", {}, "tunde");
+    FAIL("an unknown preset was accepted");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("valid presets: tuned") != std::string::npos);
+  }
+  CHECK(format_catalogue().find("preset tuned: ") != std::string::npos);
 }

@@ -9,6 +9,9 @@
 #include "policies/registry/registry.h"
 #include "policies/thesis/shgraph.h"
 #include "policies/thesis/shgraph_core.h"
+#include "sim/world/spline.h"
+
+#include <glm/geometric.hpp>
 
 using namespace ambisim;
 
@@ -101,6 +104,9 @@ ShGraphSettings settings3() {
   ShGraphSettings s;
   s.root_size_m = 81.0;
   s.min_cell_m = 3.0;  // depths 0..3: 81, 27, 9, 3 m
+  // These worlds have no ground near the camera (1 km below it): the lattice stands where the
+  // camera starts, so the structure's geometry is that of the camera's position.
+  s.anchor = LatticeAnchor::camera;
   return s;
 }
 
@@ -283,7 +289,8 @@ TEST_CASE("SHGraph: no step in a lookup when new coefficients arrive, converging
 TEST_CASE("SHGraph re-requests a set lifetime - (2 latency + 1 s) after its capture", "[shgraph]") {
   ShGraphSettings s;
   s.root_size_m = 27.0;
-  s.min_cell_m = 27.0;  // one cell: the root's anchor only
+  s.min_cell_m = 27.0;               // one cell: the root's anchor only
+  s.anchor = LatticeAnchor::camera;  // no ground near (1 km below)
   Harness<ShGraphCore<3>> h(s);
   h.step();
   REQUIRE(h.last_requests.size() == 1);
@@ -359,4 +366,157 @@ TEST_CASE("SHGraph lifts captures out of solids and skips cells below the floor"
   CHECK(vp->params()["k"] == 9.0);
   CHECK(make_planner("shgraph")->params()["predict"] == false);
   CHECK(make_planner("shgraph+route")->params()["route"] == true);
+}
+
+TEST_CASE("SHGraph spends the granted budget at 100 m/s while cells are missing", "[shgraph]") {
+  // The thesis' own sizes (root 243 m, 3 m cells, k = 9) at 60 fps and 1 face per frame: the
+  // working depth at 100 m/s is the root (D2 asks for 90 m cells). The first version captured
+  // only the focus cell there and left most capture slots empty; going a level up generates
+  // new sets there (L574).
+  const auto slots_used = [](bool fill) {
+    ShGraphSettings s;
+    s.fill_budget = fill;
+    Harness<ShGraphCore<3>> h(s, 0.0);  // flat ground at 0 m
+    h.camera = {0.0, 0.0, 20.0};
+    h.velocity = {100.0, 0.0, 0.0};
+    std::int64_t offered = 0, used = 0;
+    for (int i = 0; i < 20 * 60; ++i) {
+      const bool free_slot = h.flights.empty();
+      h.step();
+      if (free_slot) {
+        ++offered;
+        used += h.last_requests.empty() ? 0 : 1;
+      }
+    }
+    INFO("fill " << fill << ": " << used << " of " << offered << " capture slots used");
+    CHECK(h.core.working_depth() <= 0);
+    return static_cast<double>(used) / static_cast<double>(offered);
+  };
+  CHECK(slots_used(true) >= 0.9);
+  CHECK(slots_used(false) < 0.5);  // the first version's rule, which the issue measured
+}
+
+TEST_CASE("SHGraph asks for the working depth near the camera first, centre then corners",
+          "[shgraph]") {
+  // A parked camera over flat ground with room for every candidate at once: near_first puts
+  // every working-depth cell of the 3x3x3 neighbourhood before any coarser one, the centre
+  // first, then the 8 corners (L562, L566, L572); coarse_first (the first version) starts at
+  // the root.
+  const auto first_requests = [](CandidateOrder order) {
+    ShGraphSettings s = settings3();
+    s.order = order;
+    s.fill_budget = false;
+    ShGraphCore<3> core(s);
+    WorldQueries world;
+    world.ground_height = [](double, double) { return -1000.0; };
+    world.surface_height = world.ground_height;
+    FrameContext c;
+    c.dt = 1.0 / 60.0;
+    c.camera_position = {1.0, 2.0, 50.0};
+    c.faces_per_frame = 6.0;
+    c.startable_captures = 200;
+    c.world = &world;
+    const auto req = core.plan(c);
+    REQUIRE(core.working_depth() == core.max_depth());
+    return std::make_pair(req, core.cell_size(core.working_depth()));
+  };
+  const auto [near, cell] = first_requests(CandidateOrder::near_first);
+  // 27 working-depth cells plus the distinct coarser ones (each level's 3x3x3 shares its centre).
+  REQUIRE(near.size() >= 27);
+  const glm::dvec3 focus_cell_centre = near[0].position;
+  CHECK(glm::distance(focus_cell_centre, glm::dvec3(1.0, 2.0, 50.0)) <=
+        0.5 * std::sqrt(3.0) * cell);
+  for (std::size_t i = 1; i < 27; ++i) {
+    const glm::dvec3 o = (near[i].position - focus_cell_centre) / cell;
+    INFO("request " << i << " offset " << o.x << " " << o.y << " " << o.z);
+    for (int a = 0; a < 3; ++a) CHECK(std::abs(std::abs(o[a]) - std::round(std::abs(o[a]))) < 1e-9);
+    CHECK(std::max({std::abs(o.x), std::abs(o.y), std::abs(o.z)}) == Approx(1.0));
+    const int axes = (std::abs(o.x) > 0.5) + (std::abs(o.y) > 0.5) + (std::abs(o.z) > 0.5);
+    if (i <= 8) CHECK(axes == 3);            // the corners
+    if (i > 8 && i <= 14) CHECK(axes == 1);  // the faces
+    if (i > 14) CHECK(axes == 2);            // the edges
+  }
+  const auto [coarse, cell2] = first_requests(CandidateOrder::coarse_first);
+  REQUIRE(coarse.size() == near.size());
+  // coarse_first starts with the root's centre and its 27 at 27 m before any 3 m cell.
+  CHECK(glm::distance(coarse[1].position, coarse[0].position) > 2.0 * cell2);
+}
+
+TEST_CASE("SHGraph's lattice stands on the ground, and nothing is captured inside a solid",
+          "[shgraph]") {
+  // Flat ground at 0 m and a forest east of x = 0 whose canopy top is a solid 20 m up; the
+  // camera flies east 2 m above the canopy. Every depth has cell centres at anchor_height_m
+  // above the ground (L592); no capture is inside the canopy, and the cells whose set would
+  // have to move up by more than half a cell are never captured (L318).
+  const auto flight = [](LatticeAnchor anchor) {
+    ShGraphSettings s;
+    s.anchor = anchor;
+    auto h = std::make_unique<Harness<ShGraphCore<3>>>(s, 0.0);
+    h->world.surface_height = [](double x, double) { return x >= 0.0 ? 20.0 : 0.0; };
+    h->camera = {-30.0, 0.0, 22.0};
+    h->velocity = {3.0, 0.0, 0.0};
+    h->run(20.0);
+    return h;
+  };
+  const auto h = flight(LatticeAnchor::ground);
+  const auto& core = h->core;
+  const auto on_ground_lattice = [&](const auto& c) {
+    int off = 0, live = 0;
+    for (std::int32_t i = 0; i < static_cast<std::int32_t>(c.nodes().size()); ++i) {
+      if (!c.node_live(i)) continue;
+      ++live;
+      const double steps = (c.node_centre(i).z - 2.0) / c.cell_size(c.nodes()[i].depth);
+      off += std::abs(steps - std::round(steps)) > 1e-6 ? 1 : 0;
+    }
+    REQUIRE(live > 100);
+    return off;
+  };
+  CHECK(on_ground_lattice(core) == 0);
+  REQUIRE(h->captured.size() > 50);
+  int in_forest = 0;
+  for (const auto& [tag, p] : h->captured) {
+    CHECK(p.z >= h->world.surface_height(p.x, p.y) + 0.5 - 1e-9);
+    in_forest += p.x >= 0.0 ? 1 : 0;
+  }
+  CHECK(in_forest > 10);
+  CHECK(core.dropped_in_solids() > 0);  // cells deep in the canopy: never captured
+  // Anchored at the camera (22 m up) the 3 m cells' centres are 22 + 3n, off the ground's.
+  const auto hc = flight(LatticeAnchor::camera);
+  CHECK(on_ground_lattice(hc->core) > 100);
+}
+
+TEST_CASE("shgraph+route raises the resolution on a winding road ahead, unlike +vp", "[shgraph]") {
+  // A road bending round a 150 m circle at 30 m/s: +route captures the cells the road passes
+  // through one level finer (L316); +vp only looks along a straight line.
+  std::vector<glm::dvec3> ring;
+  for (int i = 0; i <= 64; ++i) {
+    const double a = 2.0 * M_PI * i / 64.0;
+    ring.push_back({150.0 * std::cos(a), 150.0 * std::sin(a), 0.0});
+  }
+  const Spline3 road(ring);
+  const auto near_road = [&](bool route) {
+    ShGraphSettings s;
+    s.prediction.enabled = true;
+    s.prediction.route = route;
+    s.road_refine_levels = route ? 1 : 0;
+    Harness<ShGraphCore<3>> h(s, 0.0);
+    h.world.road = &road;
+    double on_road = 0.0, total = 0.0;
+    double angle = 0.0;
+    for (int i = 0; i < 30 * 60; ++i) {
+      angle = 30.0 / 150.0 * h.time();
+      h.camera = {150.0 * std::cos(angle), 150.0 * std::sin(angle), 1.5};
+      h.velocity = {-30.0 * std::sin(angle), 30.0 * std::cos(angle), 0.0};
+      h.step();
+      for (const auto& r : h.last_requests) {
+        const double off = std::abs(glm::length(glm::dvec2(r.position)) - 150.0);
+        on_road += off < 10.0 ? 1.0 : 0.0;
+        total += 1.0;
+      }
+    }
+    INFO("route " << route << ": " << on_road << " of " << total << " requests within 10 m");
+    return on_road / total;
+  };
+  const double vp = near_road(false), route = near_road(true);
+  CHECK(route > vp + 0.1);
 }

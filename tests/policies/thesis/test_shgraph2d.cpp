@@ -73,14 +73,25 @@ ShGraphSettings sheet_settings() {
 
 }  // namespace
 
-TEST_CASE("shgraph2d captures on a sheet height_m above the terrain, under the canopy",
-          "[shgraph]") {
+TEST_CASE("shgraph2d captures on a sheet height_m above the canopy, never inside it", "[shgraph]") {
+  // The canopy is a solid 20 m above the terrain. The sheet follows its top (the default)...
   Sheet s(sheet_settings());
   s.run(6.0);
   REQUIRE(s.captured.size() > 20);
   for (const auto& [tag, p] : s.captured) {
-    CHECK(p.z == Approx(terrain(p.x, p.y) + 2.0));
+    CHECK(p.z == Approx(terrain(p.x, p.y) + 20.0 + 2.0));
   }
+  CHECK(s.core.dropped_in_solids() == 0);
+  // ... or the terrain (D12's first reading): its cells stand 18 m inside the crowns, and only
+  // those whose set may move up by that much (half a cell: the 81 m root) are captured, above
+  // the canopy; the rest are never captured (L318).
+  ShGraphSettings under = sheet_settings();
+  under.sheet_over_surface = false;
+  Sheet u(under);
+  u.run(6.0);
+  REQUIRE(!u.captured.empty());
+  for (const auto& [tag, p] : u.captured) CHECK(p.z >= terrain(p.x, p.y) + 20.0 + 0.5 - 1e-9);
+  CHECK(u.core.dropped_in_solids() > 0);
 }
 
 TEST_CASE("shgraph2d: 9 children, 4 links in pairs, one set per quadrant by horizontal distance",
