@@ -38,7 +38,11 @@ void ShGraphCore<Dim>::set_coefficients(AnchorEntry* e, const Sh9Rgb& sh,
                                         const FinishedProbe& probe, const Sh9Rgb* fade_from,
                                         double fade_from_time) {
   CoefficientAnchor& a = e->anchor;
-  if (a.has_coefficients()) by_age_.erase({a.creation_time(), e});
+  if (a.has_coefficients()) {
+    by_age_.erase({a.creation_time(), e});
+  } else {
+    e->entered_at = now_;  // a new set in the pattern (a replacement keeps its weight)
+  }
   if (!a.fading()) fading_.push_back(e);
   a.set_new(sh, probe.requested_time, probe.tag, fade_from, fade_from_time);
   by_age_.insert({a.creation_time(), e});

@@ -14,6 +14,7 @@
 // negative after root growth. Positions are derived from keys, never the reverse.
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <set>
 #include <string>
@@ -36,6 +37,7 @@ struct AnchorEntry {
   glm::dvec3 at_q{0.0};       // capture, in key units (h) from the origin: what lookups weigh by
   double relocation_m = 0.0;  // capture.z - position.z: how far it was moved out of a solid
   bool dropped_in_solid = false;  // refused once for standing too deep inside a solid (L318)
+  double entered_at = 0.0;        // when its current run of sets began (the pattern blend, 7.6)
   std::int32_t refs = 0;
 };
 
@@ -127,8 +129,10 @@ class ShGraphCore {
   bool protected_node(std::int32_t i, const Focus& focus) const;
   void update_working_depth(const FrameContext& ctx);
   double ground_at(double x, double y) const;
-  // lookup() without its fallback: false when no set serves p (r is then untouched).
-  bool lookup_into(const glm::dvec3& p, LookupResult& r) const;
+  // lookup() without its fallback, from the levels shallower than above_depth: false when no
+  // set serves p (r is then untouched).
+  bool lookup_into(const glm::dvec3& p, LookupResult& r,
+                   int above_depth = std::numeric_limits<int>::max()) const;
 
   ShGraphSettings s_;
   int dmax_ = 0;

@@ -2,6 +2,7 @@
 // weighted by distance), its statistics and the node views for viz.
 #include "policies/thesis/shgraph_core.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -26,7 +27,7 @@ LookupResult ShGraphCore<Dim>::lookup(const glm::dvec3& p) const {
 }
 
 template <int Dim>
-bool ShGraphCore<Dim>::lookup_into(const glm::dvec3& p, LookupResult& r) const {
+bool ShGraphCore<Dim>::lookup_into(const glm::dvec3& p, LookupResult& r, int above_depth) const {
   if (nodes_.empty()) return false;
   const Q q = to_q(p);
   const bool outside = !contains(0, q);
@@ -45,6 +46,7 @@ bool ShGraphCore<Dim>::lookup_into(const glm::dvec3& p, LookupResult& r) const {
   std::array<std::int32_t, kChildren> cells{};
   for (int k = count - 1; k >= 0; --k) {
     const std::int32_t i = path[k];
+    if (nodes_[i].depth >= above_depth) continue;
     best.fill(Best{});
     std::uint32_t covered = 0;
     // D5: the node and its 3^Dim - 1 same-depth neighbours, reached through the links.
@@ -128,14 +130,43 @@ bool ShGraphCore<Dim>::lookup_into(const glm::dvec3& p, LookupResult& r) const {
       if (chosen[k].e) sum += (w[k] = 1.0 / std::sqrt(chosen[k].d2));
     }
   }
+  // 7.6's pattern blend. A set that appeared less than pattern_blend_s ago enters the weights
+  // with its progress f (0 when it appeared, 1 after pattern_blend_s): the level answers
+  // A = sum(w f sh) / sum(w f), mixed with the coarser levels' answer by the progress of its
+  // most advanced set. A new set changes nothing the frame it appears (f = 0), and neither does
+  // a level's first set (the mix is then all coarser answer, what the lookup gave before).
+  std::array<double, kOctants> wn{};
+  for (int k = 0; k < kOctants; ++k) wn[k] = chosen[k].e && w[k] > 0.0 ? w[k] / sum : 0.0;
+  LookupResult coarse;
+  double rest = 0.0;  // the coarser answer's weight
+  if (s_.pattern_blend_s > 0.0) {
+    std::array<double, kOctants> f{};
+    double entered = 0.0, most = 0.0;
+    for (int k = 0; k < kOctants; ++k) {
+      if (!chosen[k].e) continue;  // an exact hit weighs one set, but the level has them all
+      f[k] = std::clamp((now_ - chosen[k].e->entered_at) / s_.pattern_blend_s, 0.0, 1.0);
+      entered += wn[k] * f[k];
+      most = std::max(most, f[k]);
+    }
+    if (most < 1.0 && lookup_into(p, coarse, chosen_depth)) rest = 1.0 - most;
+    const double level_share = 1.0 - rest;
+    if (entered < 1.0 - 1e-12 && entered > 0.0) {
+      for (int k = 0; k < kOctants; ++k) wn[k] = wn[k] * f[k] / entered * level_share;
+    } else if (entered <= 0.0 && rest > 0.0) {
+      wn.fill(0.0);  // every set of the level just appeared: the coarser answer alone
+      rest = 1.0;
+    } else if (rest > 0.0) {
+      for (int k = 0; k < kOctants; ++k) wn[k] *= level_share;
+    }
+  }
   double data_time = 0.0;
   // The fast path sums the 27 floats of each set as one flat array (vectorised): the same
   // products and sums, element by element, as the naive path's operators.
   static_assert(sizeof(Sh9Rgb) == kShCount * 3 * sizeof(float));
   std::array<float, kShCount * 3> acc{};
   for (int k = 0; k < kOctants; ++k) {
-    if (!chosen[k].e || w[k] <= 0.0) continue;
-    const double wk = w[k] / sum;
+    if (!chosen[k].e || wn[k] <= 0.0) continue;
+    const double wk = wn[k];
     const CoefficientAnchor& a = chosen[k].e->anchor;
     if (naive_) {
       r.sh += a.active() * static_cast<float>(wk);
@@ -152,6 +183,32 @@ bool ShGraphCore<Dim>::lookup_into(const glm::dvec3& p, LookupResult& r) const {
     r.contributors[static_cast<std::size_t>(r.contributor_count++)] = {a.tag(),
                                                                        static_cast<float>(wk)};
     data_time += wk * a.data_time();
+  }
+  if (rest > 0.0) {
+    const auto wf = static_cast<float>(rest);
+    if (naive_) {
+      r.sh += coarse.sh * wf;
+    } else {
+      for (std::size_t c = 0; c < r.sh.c.size(); ++c) {
+        acc[3 * c] += coarse.sh.c[c].x * wf;
+        acc[3 * c + 1] += coarse.sh.c[c].y * wf;
+        acc[3 * c + 2] += coarse.sh.c[c].z * wf;
+      }
+    }
+    data_time += rest * coarse.data_time;
+    // The coarser sets join the contributors; beyond 8 the lightest give way.
+    for (int c = 0; c < coarse.contributor_count; ++c) {
+      auto con = coarse.contributors[static_cast<std::size_t>(c)];
+      con.weight *= wf;
+      if (r.contributor_count < 8) {
+        r.contributors[static_cast<std::size_t>(r.contributor_count++)] = con;
+        continue;
+      }
+      auto lightest =
+          std::min_element(r.contributors.begin(), r.contributors.begin() + 8,
+                           [](const auto& x, const auto& y) { return x.weight < y.weight; });
+      if (lightest->weight < con.weight) *lightest = con;
+    }
   }
   if (!naive_) {
     for (std::size_t c = 0; c < r.sh.c.size(); ++c) {
@@ -211,11 +268,11 @@ void ShGraphCore<Dim>::describe_nodes(std::vector<ProbeNodeView>& out) const {
 // The members defined here, for both dimensions: the class template is declared extern in
 // the header, and each concern's file instantiates its own members.
 template LookupResult ShGraphCore<2>::lookup(const glm::dvec3&) const;
-template bool ShGraphCore<2>::lookup_into(const glm::dvec3&, LookupResult&) const;
+template bool ShGraphCore<2>::lookup_into(const glm::dvec3&, LookupResult&, int) const;
 template PlannerStats ShGraphCore<2>::stats() const;
 template void ShGraphCore<2>::describe_nodes(std::vector<ProbeNodeView>&) const;
 template LookupResult ShGraphCore<3>::lookup(const glm::dvec3&) const;
-template bool ShGraphCore<3>::lookup_into(const glm::dvec3&, LookupResult&) const;
+template bool ShGraphCore<3>::lookup_into(const glm::dvec3&, LookupResult&, int) const;
 template PlannerStats ShGraphCore<3>::stats() const;
 template void ShGraphCore<3>::describe_nodes(std::vector<ProbeNodeView>&) const;
 

@@ -49,6 +49,9 @@ std::vector<ParamSpec> shgraph_params(int dim, bool predict, bool route) {
                    "new coefficients fade in linearly over this time (D8)"),
       choice_param("fade_from", "lookup", {"lookup", "none"},
                    "a fresh anchor fades from what lookups gave there (lookup) or snaps (none)"),
+      number_param("pattern_blend_s", 1.0, Range::non_negative(),
+                   "7.6: a new set enters the weights over this time, the rest staying with the "
+                   "coarser levels (0: the pattern switches at once)"),
       number_param("root_size_m", 243.0, Range::positive(),
                    "normal root cell size; grows 3x to capture outside it, shrinks back (D9)"),
       number_param("min_cell_m", 3.0, Range::positive(),
@@ -116,6 +119,7 @@ ShGraphSettings shgraph_settings_from(const PlannerParams& p, int dim) {
   s.refresh_by_rate = p.choice("refresh") == "rate";
   s.refresh_tolerance = p.number("refresh_tolerance");
   s.fade_from_lookup = p.choice("fade_from") == "lookup";
+  s.pattern_blend_s = p.number("pattern_blend_s");
   s.root_size_m = p.number("root_size_m");
   s.min_cell_m = std::min(p.number("min_cell_m"), s.root_size_m);
   s.k = p.number("k");

@@ -32,6 +32,10 @@ struct ShGraphSettings {
   bool refresh_by_rate = true;  // the thesis' refresh rule under changing light (7.5.3)
   double refresh_tolerance = 0.04;  // the relative change a set may go stale by
   bool fade_from_lookup = true;     // D8: a fresh anchor fades from the lookup value (else snaps)
+  // 7.6's remedy for pattern pops: a set that just appeared enters the interpolation weights
+  // over pattern_blend_s, the rest of the weight staying with the coarser levels' answer, so
+  // a new finer level (a new interpolation pattern) blends in instead of switching (0: off).
+  double pattern_blend_s = 1.0;
   WeightMode weights = WeightMode::inverse_distance;  // D4
   LevelRule level = LevelRule::first;                 // D5 / L963
   int widen_cells = 3;  // widening radius at the working depth once 3^Dim is complete

@@ -215,7 +215,9 @@ TEST_CASE("SHGraph splits into 27, shares the centre anchor and keeps links in p
 
 TEST_CASE("SHGraph lookup uses at most 8 sets, one per octant, and is accurate near the camera",
           "[shgraph]") {
-  Harness<ShGraphCore<3>> h(settings3());
+  ShGraphSettings s = settings3();
+  s.pattern_blend_s = 0.0;  // one level's sets alone (the blend mixes in the coarser answer)
+  Harness<ShGraphCore<3>> h(s);
   h.run(10.0);
   int multi = 0;
   for (double x = -6.0; x <= 6.0; x += 1.3) {
@@ -519,4 +521,38 @@ TEST_CASE("shgraph+route raises the resolution on a winding road ahead, unlike +
   };
   const double vp = near_road(false), route = near_road(true);
   CHECK(route > vp + 0.1);
+}
+
+TEST_CASE("SHGraph blends a new interpolation pattern in over pattern_blend_s (7.6)", "[shgraph]") {
+  // A parked camera: coarse sets first, then finer levels appear around it. Each new set
+  // changes the interpolation pattern at a point beside it; with the blend, a set that just
+  // appeared holds only (age / pattern_blend_s) of its weight and the rest stays with the
+  // coarser answer, so the lookup there moves in small steps instead of jumping.
+  const auto largest_step = [](double blend_s) {
+    ShGraphSettings s = settings3();
+    s.pattern_blend_s = blend_s;
+    Harness<ShGraphCore<3>> h(s);
+    const glm::dvec3 p{4.0, 4.0, 51.0};
+    double prev = 0.0, worst = 0.0;
+    bool have = false;
+    for (int i = 0; i < 8 * 60; ++i) {
+      h.step([&] {
+        const LookupResult r = h.core.lookup(p);
+        if (r.contributor_count == 0) return;
+        const double v = r.sh.c[0].x;
+        if (have) worst = std::max(worst, std::abs(v - prev));
+        prev = v;
+        have = true;
+      });
+    }
+    INFO("pattern_blend_s " << blend_s << ": largest per-frame step " << worst);
+    return worst;
+  };
+  const double off = largest_step(0.0), on = largest_step(1.0);
+  WARN("largest per-frame step of L0 red beside a parked camera: " << off
+                                                                   << " without the "
+                                                                      "blend, "
+                                                                   << on << " with");
+  CHECK(off > 0.0);
+  CHECK(on < 0.5 * off);
 }
