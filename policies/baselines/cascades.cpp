@@ -74,6 +74,9 @@ PlannerInfo CascadesPlanner::info() {
                    "relative L0 change above which the hysteresis drops by 0.75 (0: off)"),
       number_param("brightness_threshold", 0.10, Range::non_negative(),
                    "largest relative brightening of L0 luminance per 60 Hz frame (0: off)"),
+      bool_param("fade_in", false,
+                 "a first capture blends in from what lookups there returned before (as grid) "
+                 "instead of being taken as is (DDGI: no hysteresis on a new probe)"),
       bool_param("predict", false, "centre the levels at the predicted focus"),
       number_param("lookahead_s", 0.5, Range::non_negative(),
                    "with predict: look-ahead beyond the capture latency")};
@@ -93,7 +96,8 @@ CascadesPlanner::CascadesPlanner(const PlannerParams& params)
       nz_(params.integer("nz")),
       height_m_(params.number("height_m")),
       clearance_m_(params.number("clearance_m")),
-      blend_cells_(params.number("blend_cells")) {
+      blend_cells_(params.number("blend_cells")),
+      fade_in_(params.boolean("fade_in")) {
   blend_.hysteresis = params.number("hysteresis");
   blend_.irradiance_threshold = params.number("irradiance_threshold");
   blend_.brightness_threshold = params.number("brightness_threshold");
@@ -288,6 +292,18 @@ void CascadesPlanner::deliver(const FinishedProbe& probe) {
     q->target = fresh;
     q->target_time = probe.requested_time;
     q->tag = probe.tag;
+    if (!q->has_data && fade_in_) {
+      // fade_in: start from what lookups here showed (finer/coarser levels, neighbours).
+      const LookupResult before = lookup(q->position);
+      if (before.contributor_count > 0) {
+        q->has_data = true;
+        q->value = format_.store(before.sh);
+        q->value_time = before.data_time;
+        q->blending = !(q->value == fresh);
+        q->remaining = 1.0;
+        continue;
+      }
+    }
     if (!q->has_data) {
       // Newly scrolled in: no hysteresis (RTXGI sets it to 0 for a probe that was black).
       q->has_data = true;

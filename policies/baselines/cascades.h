@@ -28,9 +28,10 @@
 // last request.
 //
 // Blending (DDGI hysteresis, policies/baselines/ddgi_blend.h). A probe's first capture is
-// taken as is (no hysteresis on a newly scrolled probe); later ones become its target and its
-// value moves there each update() by DDGI's per-frame lerp at 60 Hz (hysteresis 0.97: a time
-// constant of 0.55 s), faster after a big change (irradiance_threshold 0.25), brightening at
+// taken as is (no hysteresis on a newly scrolled probe; with fade_in=true it blends in from
+// what lookups at its point returned before, as grid's arrivals do); later ones become its target
+// and its value moves there each update() by DDGI's per-frame lerp at 60 Hz (hysteresis 0.97: a
+// time constant of 0.55 s), faster after a big change (irradiance_threshold 0.25), brightening at
 // most brightness_threshold (0.10) per frame. After 99.3 % of the way it snaps.
 //
 // Lookup. The finest level whose window (box of its lattice) contains p and which holds data
@@ -150,6 +151,7 @@ class CascadesPlanner final : public Planner {
   double height_m_;
   double clearance_m_;
   double blend_cells_;
+  bool fade_in_;
   DdgiBlendSettings blend_;
   PredictionSettings prediction_;
 

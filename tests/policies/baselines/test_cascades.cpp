@@ -450,3 +450,26 @@ TEST_CASE("cascades: with one level it behaves as grid (a single volume)",
   CHECK(requests > 300);
   CHECK(compared == 240 * 9);
 }
+
+TEST_CASE("cascades: with fade_in a first capture blends in from the lookup it replaces",
+          "[baselines][cascades]") {
+  for (bool fade : {false, true}) {
+    INFO("fade_in " << fade);
+    // Two probes, x = 0 and 8 at z = 8 (camera at x = 1: x = 0 is captured first).
+    auto g =
+        make_cascades({"levels=1", "nx=2", "ny=1", "nz=1", "spacing_m=8", "vertical_spacing_m=4",
+                       "height_m=8", fade ? "fade_in=true" : "fade_in=false"});
+    const glm::dvec3 cam{1, 0, 1.5}, at{8, 0, 8};
+    capture_all(g, frame_at(0.0, cam, 1), [](const glm::dvec3&) { return flat_sh(3.0f); });
+    CHECK(g.lookup(at).sh == flat_sh(3.0f));  // its cell's one corner with data
+    const auto req =
+        capture_all(g, frame_at(1.0, cam, 1), [](const glm::dvec3&) { return flat_sh(2.8f); });
+    REQUIRE(req.size() == 1);
+    CHECK(req[0].position == glm::dvec3(8, 0, 8));
+    CHECK(g.lookup(at).sh == (fade ? flat_sh(3.0f) : flat_sh(2.8f)));
+    double t = 1.0;
+    for (int i = 0; i < 30; ++i) g.update(frame_at(t += 1.0 / 60.0, cam, 0));
+    const double expect = fade ? 2.8 + 0.2 * std::pow(0.97, 30.0) : 2.8;
+    CHECK(g.lookup(at).sh.c[0].x == Approx(expect).epsilon(1e-4));
+  }
+}
