@@ -131,6 +131,11 @@ Setup setup_for(const std::string& planner, std::int64_t n) {
     const auto side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n) / 4.0)));
     s.params = {"nx=" + std::to_string(side), "ny=" + std::to_string(side), "nz=4"};
     s.fill_step_m = 0.0;  // camera-centred: it fills standing still (moving, it scrolls away)
+  } else if (planner == "cascades") {
+    // As grid, over its 4 levels: nz = 4 layers, nx = ny = sqrt(n / 16) (rounded up).
+    const auto side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n) / 16.0)));
+    s.params = {"levels=4", "nx=" + std::to_string(side), "ny=" + std::to_string(side), "nz=4"};
+    s.fill_step_m = 0.0;
   } else if (planner.rfind("octree", 0) == 0) {
     s.params = {"retention=lifetime", "lifetime_s=1e9"};
     s.fill_budget_s = 180.0;  // every frame expires over every set: the fill is quadratic
@@ -440,8 +445,9 @@ void BM_MemoryL1fp16(benchmark::State& state, const std::string& planner) {
 }
 
 // Planners with a structure to measure; constant, hemisphere and oracle hold no structure.
-const char* const kPlanners[] = {"nearest", "per_object", "grid",          "octree",    "octree+vp",
-                                 "shgraph", "shgraph+vp", "shgraph+route", "shgraph2d", "ambisim"};
+const char* const kPlanners[] = {"nearest",       "per_object", "grid",    "cascades",
+                                 "octree",        "octree+vp",  "shgraph", "shgraph+vp",
+                                 "shgraph+route", "shgraph2d",  "ambisim"};
 
 }  // namespace
 

@@ -5,6 +5,7 @@
 
 #include "policies/ambisim/demand_planner.h"
 #include "policies/baselines/baked.h"
+#include "policies/baselines/cascades.h"
 #include "policies/baselines/constant_ambient.h"
 #include "policies/baselines/nearest_probe.h"
 #include "policies/baselines/oracle.h"
@@ -29,6 +30,7 @@ const std::vector<PlannerInfo>& planner_catalogue() {
       NearestProbePlanner::info(),
       PerObjectPlanner::info(),
       ScrollingGridPlanner::info(),
+      CascadesPlanner::info(),
       RelitPlanner::info(),
       BakedPlanner::baked_info(),
       BakedPlanner::tod_info(),

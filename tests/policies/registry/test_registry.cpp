@@ -28,9 +28,9 @@ bool contains(const std::string& s, const std::string& part) {
 }
 
 const std::vector<std::string> kExpectedPlanners = {
-    "oracle",     "constant",      "hemisphere", "nearest", "per_object", "grid",
-    "relit",      "baked",         "baked_tod",  "octree",  "octree+vp",  "shgraph",
-    "shgraph+vp", "shgraph+route", "shgraph2d",  "ambisim"};
+    "oracle",   "constant",   "hemisphere",    "nearest",   "per_object", "grid",
+    "cascades", "relit",      "baked",         "baked_tod", "octree",     "octree+vp",
+    "shgraph",  "shgraph+vp", "shgraph+route", "shgraph2d", "ambisim"};
 
 std::string expected_list() {
   std::string s;
