@@ -9,3 +9,9 @@ bin="${1:-$root/build/ambisim}"
 mkdir -p "$root/scenarios/levels/lakeside"
 "$bin" world "$root/scenarios/default_world.json" --export-level "$root/scenarios/levels/lakeside" \
   --region 700,1900,1724,2924 --stride 2 --force
+# The test set's level (scenarios/test_set/shore_skim.json): another world's lake shore (seed 7),
+# so no tuning run ever saw its terrain.
+mkdir -p "$root/scenarios/levels/westlake"
+printf '{"world": {"seed": 7}}' >"${TMPDIR:-/tmp}/ambisim_seed7_world.json"
+"$bin" world "${TMPDIR:-/tmp}/ambisim_seed7_world.json" --export-level "$root/scenarios/levels/westlake" \
+  --region 300,1500,1324,2524 --stride 2 --force
