@@ -7,7 +7,8 @@ Usage: scripts/tune.py OUT_DIR [--ambisim build/ambisim] [--jobs N] [--grids FIL
 
 Reads scenarios/tuning/grids.json (the training scenarios, the run length, seeds and budgets,
 and per planner the same number of configurations, the first its defaults), writes
-OUT_DIR/tuning.sweep.json with one planner label per configuration (`NAME_cK`), runs it with
+OUT_DIR/tuning.sweep.json with one planner label per configuration (`NAME_cK`, plus the
+planner's `fixed` parameters, which are not part of its preset), runs it with
 `ambisim sweep` (resuming what OUT_DIR/runs already holds), and picks per planner the
 configuration with the lowest score:
 
@@ -53,9 +54,11 @@ def load_grids(path):
 def sweep_spec(g, grids_path):
     base = os.path.dirname(os.path.abspath(grids_path))
     planners = []
+    fixed = g.get("fixed", {})
     for name, configs in g["planners"].items():
         for k, params in enumerate(configs):
-            planners.append({"name": name, "label": f"{name}_c{k}", "params": params})
+            planners.append({"name": name, "label": f"{name}_c{k}",
+                             "params": {**params, **fixed.get(name, {})}})
     return {
         "name": "tuning",
         "scenarios": [os.path.normpath(os.path.join(base, s)) for s in g["training"]],
