@@ -40,7 +40,8 @@ std::vector<ParamSpec> octree_params(bool predict) {
                    "trilinear over the deepest complete node, or the thesis' nearest corner per "
                    "octant with inverse-distance weights (D3)"),
       number_param("lift_m", 0.5, Range::non_negative(),
-                   "captures are lifted to at least this height above the surface (D14); the "
+                   "captures are lifted to at least this height above the surface, by at most "
+                   "half the asking node's cell (deeper corners are never captured, D14); the "
                    "corner keeps its lattice key")};
   specs.insert(specs.end(), own.begin(), own.end());
   // The refresh rule is an option: the octree searches root first, so under changing light its

@@ -13,7 +13,10 @@
 // with +vp first the predicted position p*, then the camera), the first corner without a set
 // and not in flight (or flagged for renewal) is captured, corners of one node taken nearest to
 // the focus first. A leaf whose 8 corners all hold sets splits, down to min_cell_m. So
-// refinement is coarse first, the order the thesis reports as a failure (L550).
+// refinement is coarse first, the order the thesis reports as a failure (L550). A corner
+// whose capture would have to move out of terrain or canopy by more than half the asking
+// node's cell is never captured and counts as present for the split (D14, DDGI's
+// classification); lookups renormalise over the corners that hold sets.
 //
 // Lookup (D3). lookup=trilinear: trilinear interpolation over the 8 corners of the deepest
 // COMPLETE node on the path to p (a parent is complete when it splits; when eviction or expiry

@@ -1,6 +1,8 @@
 // SHGraph's planning: the working depth from speed and frame rate (D2), and which cells to
-// capture this frame: missing and expiring sets around the (predicted) camera, coarse to fine,
-// then widened at the working depth.
+// capture this frame: missing and expiring sets around the (predicted) camera, the working
+// depth first (D21; coarse_first: the first version's order), the road ahead one level finer
+// with +route (D20), then widened at the working depth, then the budget fill (D22). Cells
+// deeper inside a solid than half a cell are never asked for (D14).
 #include "policies/thesis/shgraph_core.h"
 
 #include <algorithm>
