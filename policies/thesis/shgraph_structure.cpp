@@ -6,6 +6,8 @@
 #include <array>
 #include <cstdint>
 
+#include "policies/core/solid_clearance.h"
+
 namespace ambisim {
 
 template <int Dim>
@@ -69,14 +71,7 @@ glm::dvec3 ShGraphCore<Dim>::capture_position(const glm::dvec3& nominal) const {
   // Out of terrain and canopy alike (L318): a cube map rendered inside a crown sees its
   // backfaces just as one inside a hill. Whether the move is small enough for the cell to keep
   // the set is decided where the cell's size is known (plan()).
-  glm::dvec3 c = nominal;
-  if (world_ == nullptr) return c;
-  if (world_->surface_height) {
-    c.z = std::max(c.z, world_->surface_height(c.x, c.y) + s_.lift_m);
-  } else if (world_->ground_height) {
-    c.z = std::max(c.z, world_->ground_height(c.x, c.y) + s_.lift_m);
-  }
-  return c;
+  return above_solids(world_, nominal, s_.lift_m);
 }
 
 template <int Dim>
