@@ -39,6 +39,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "policies/ambisim/demand_planner.h"
 #include "policies/registry/registry.h"
 #include "policies/thesis/shgraph.h"
 #include "policies/thesis/shgraph2d.h"
@@ -287,17 +288,22 @@ struct Filled {
   std::vector<glm::dvec3> points;
 };
 
-// `extra`: parameters added to the setup's (the compact-format memory benchmark).
+// `extra`: parameters added to the setup's (the compact-format memory benchmark); `receivers`:
+// objects kept around the camera instead of the setup's (the game's-load frame benchmark).
+// `points`: lookup points (kLookupPoints by default; a batch of one frame's receivers).
 Filled& filled(const std::string& planner, std::int64_t n,
-               const std::vector<std::string>& extra = {}) {
+               const std::vector<std::string>& extra = {}, int receivers = 0,
+               int points = kLookupPoints) {
   static Filled f;
-  std::string key = planner + "/" + std::to_string(n);
+  std::string key = planner + "/" + std::to_string(n) + "/r" + std::to_string(receivers) + "/p" +
+                    std::to_string(points);
   for (const auto& e : extra) key += "/" + e;
   if (f.key == key) return f;
   f.driver.reset();
   f.key = key;
   Setup s = setup_for(planner, n);
   s.params.insert(s.params.end(), extra.begin(), extra.end());
+  if (receivers > 0) s.receivers = receivers;
   f.driver = std::make_unique<Driver>(s);
   f.fill_s = f.driver->fill(n);
   f.points.clear();
@@ -305,7 +311,7 @@ Filled& filled(const std::string& planner, std::int64_t n,
   std::uniform_real_distribution<double> u(-1.0, 1.0), h(0.5, 5.0);
   const glm::dvec3 c = f.driver->camera();
   const auto& rec = f.driver->receivers();
-  for (int i = 0; i < kLookupPoints; ++i) {
+  for (int i = 0; i < points; ++i) {
     if (planner == "per_object") {
       f.points.push_back(rec[static_cast<std::size_t>(rng() % rec.size())].position);
       continue;
@@ -341,6 +347,18 @@ void set_naive(Planner& p, bool naive) {
 }
 
 bool has_naive_paths(const std::string& planner) { return planner.rfind("shgraph", 0) == 0; }
+// ambisim's naive lookup is its linear scan (DemandPlanner::lookup_reference) on the same
+// probes; it has no naive frame path.
+bool has_naive_lookup(const std::string& planner) {
+  return has_naive_paths(planner) || planner == "ambisim";
+}
+
+LookupResult lookup_by(const Planner& p, const glm::dvec3& q, bool naive) {
+  if (naive) {
+    if (const auto* a = dynamic_cast<const DemandPlanner*>(&p)) return a->lookup_reference(q);
+  }
+  return p.lookup(q);
+}
 
 void BM_Lookup(benchmark::State& state, const std::string& planner, bool naive) {
   const std::int64_t n = state.range(0);
@@ -350,7 +368,7 @@ void BM_Lookup(benchmark::State& state, const std::string& planner, bool naive) 
   std::size_t i = 0;
   int fell_back = 0;
   for (auto _ : state) {
-    const LookupResult r = p.lookup(f.points[i]);
+    const LookupResult r = lookup_by(p, f.points[i], naive);
     benchmark::DoNotOptimize(r);
     fell_back += r.fell_back ? 1 : 0;
     i = (i + 1) % f.points.size();
@@ -374,6 +392,47 @@ void BM_Frame(benchmark::State& state, const std::string& planner, bool naive) {
       1e6 * update_s / static_cast<double>(std::max<std::int64_t>(1, state.iterations()));
   state.SetLabel(setup_for(planner, n).label);
   set_naive(d.planner(), false);
+}
+
+// A game's frame of lookups: every one of kBatchReceivers points (uniform in the 50 m disc
+// around the camera, as BM_Lookup's) through Planner::lookup_many at n live probes; naive: one
+// lookup_reference per point. The time per iteration is one frame's lookups.
+constexpr int kBatchReceivers = 10000;
+
+void BM_LookupMany(benchmark::State& state, const std::string& planner, bool naive) {
+  const std::int64_t n = state.range(0);
+  Filled& f = filled(planner, n, {}, 0, kBatchReceivers);
+  Planner& p = f.driver->planner();
+  LookupPoints batch;
+  for (const auto& q : f.points) batch.push_back(q);
+  std::vector<LookupResult> out;
+  for (auto _ : state) {
+    if (naive) {
+      out.resize(batch.size());
+      for (std::size_t i = 0; i < batch.size(); ++i) out[i] = lookup_by(p, batch.at(i), true);
+    } else {
+      p.lookup_many(batch, out);
+    }
+    benchmark::DoNotOptimize(out.data());
+  }
+  report_stats(state, p, n, f.fill_s);
+  state.counters["receivers"] = static_cast<double>(batch.size());
+}
+
+// A game's frame of planner work: as BM_Frame, with kFrameReceivers objects around the camera
+// (replaced by new ones every 60 m, as traffic would be) instead of 8.
+constexpr int kFrameReceivers = 1000;
+
+void BM_FrameReceivers(benchmark::State& state, const std::string& planner) {
+  const std::int64_t n = state.range(0);
+  Filled& f = filled(planner, n, {}, kFrameReceivers);
+  Driver& d = *f.driver;
+  double update_s = 0.0;
+  for (auto _ : state) update_s += d.frame(kDriveStepM, 1, 1.0, 6);
+  report_stats(state, d.planner(), n, f.fill_s);
+  state.counters["receivers"] = static_cast<double>(d.receivers().size());
+  state.counters["update_us"] =
+      1e6 * update_s / static_cast<double>(std::max<std::int64_t>(1, state.iterations()));
 }
 
 // The naive baseline: the nearest of n probes by a linear scan (probes on a 4 m spacing,
@@ -466,8 +525,9 @@ int main(int argc, char** argv) {
     for (const std::int64_t n : {1000, 10000, 100000}) {
       // Lookups first (fast, then naive on the same structure), then frames, which move on.
       for (const bool naive : {false, true}) {
-        if (naive && !has_naive_paths(planner)) continue;
-        const std::string suffix = naive ? "ShGraphNaive/" : "/";
+        if (naive && !has_naive_lookup(planner)) continue;
+        const std::string suffix =
+            !naive ? "/" : (planner == "ambisim" ? "Reference/" : "ShGraphNaive/");
         benchmark::RegisterBenchmark(("BM_Lookup" + suffix + planner).c_str(), BM_Lookup, planner,
                                      naive)
             ->Arg(n)
@@ -478,6 +538,23 @@ int main(int argc, char** argv) {
         const std::string suffix = naive ? "ShGraphNaive/" : "/";
         benchmark::RegisterBenchmark(("BM_Frame" + suffix + planner).c_str(), BM_Frame, planner,
                                      naive)
+            ->Arg(n)
+            ->Iterations(600)
+            ->Unit(benchmark::kMicrosecond);
+      }
+      if (planner == "ambisim" && n == 10000) {
+        for (const bool naive : {false, true}) {
+          benchmark::RegisterBenchmark(
+              (std::string(naive ? "BM_LookupManyReference/" : "BM_LookupMany/") + planner).c_str(),
+              BM_LookupMany, planner, naive)
+              ->Arg(n)
+              ->Iterations(naive ? 2 : 50)
+              ->Unit(benchmark::kMillisecond);
+        }
+      }
+      if (planner == "ambisim" && n == 1000) {
+        benchmark::RegisterBenchmark(("BM_FrameReceivers/" + planner).c_str(), BM_FrameReceivers,
+                                     planner)
             ->Arg(n)
             ->Iterations(600)
             ->Unit(benchmark::kMicrosecond);

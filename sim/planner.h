@@ -10,7 +10,8 @@
 //                        is refused (counted, and reported through refused()).
 //   2. started(tag)   <- for each request the simulator actually starts.
 //   3. update(ctx)       lifetimes, fades, pruning (the only place time moves for a planner).
-//   4. lookup(p)         interpolated coefficients for a receiver, any number of times.
+//   4. lookup(p)         interpolated coefficients for a receiver, any number of times
+//      (lookup_many: all of a frame's points in one call, the same results).
 //   5. deliver(probe) <- probes whose six faces are all rendered (usable from the next frame).
 // The frame context is the only clock. A planner never sees the reference solution.
 #include <array>
@@ -139,6 +140,29 @@ struct LookupResult {
   double data_time = 0.0;  // capture time of the (weighted) data used, for staleness
 };
 
+// The points of a batch lookup as a structure of arrays (every receiver of a frame): a planner
+// that sorts or vectorises its lookups reads the coordinates it needs contiguously.
+struct LookupPoints {
+  std::vector<double> x, y, z;
+  std::size_t size() const { return x.size(); }
+  void clear() {
+    x.clear();
+    y.clear();
+    z.clear();
+  }
+  void reserve(std::size_t n) {
+    x.reserve(n);
+    y.reserve(n);
+    z.reserve(n);
+  }
+  void push_back(const glm::dvec3& p) {
+    x.push_back(p.x);
+    y.push_back(p.y);
+    z.push_back(p.z);
+  }
+  glm::dvec3 at(std::size_t i) const { return {x[i], y[i], z[i]}; }
+};
+
 // One node (or probe) of a planner's structure, for the VTK views: where it is, how big, and
 // what it holds. Planners without a spatial structure report their probes as zero-size nodes.
 struct ProbeNodeView {
@@ -174,6 +198,12 @@ class Planner {
   virtual void deliver(const FinishedProbe& probe) = 0;
   virtual void update(const FrameContext& ctx) = 0;
   virtual LookupResult lookup(const glm::dvec3& p) const = 0;
+  // Every point of a frame at once: out[i] must equal lookup(points.at(i)) exactly (the
+  // contract test checks it). The simulator uses this one. Default: a loop over lookup().
+  virtual void lookup_many(const LookupPoints& points, std::vector<LookupResult>& out) const {
+    out.resize(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) out[i] = lookup(points.at(i));
+  }
   virtual PlannerStats stats() const = 0;
 
   // Per-receiver capture planners (per_object, oracle) need to know the receivers.

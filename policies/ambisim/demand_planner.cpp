@@ -13,6 +13,8 @@ namespace ambisim {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+// Probes delivered between index rebuilds, scanned linearly by queries until the next.
+constexpr std::size_t kUnindexedTail = 32;
 
 // The largest change between two coefficient sets as a log ratio of irradiance, over the six
 // axis normals and the three channels (channels darker than 1% of the brightest are lifted to
@@ -94,6 +96,10 @@ PlannerInfo DemandPlanner::info() {
                  "scale the world's rate at a probe by how much its light changed at its last "
                  "refresh for the drift predicted (0.1 to 1): a probe in shadow does not "
                  "follow the sun's dimming"),
+      bool_param("kernel_tail", false,
+                 "the kernel of the first version: a faint 1e-4 / (1 + u^4) tail beyond the "
+                 "bump, so every probe contributes everywhere and a lookup scans all of them "
+                 "(no index); kept to measure what the compact kernel costs"),
       bool_param("lamp_layer", true,
                  "near street lamps, capture their light as a second, additive set scaled by "
                  "the lamps' state (12 faces a capture): a switch costs no recapture")};
@@ -128,6 +134,7 @@ DemandPlanner::DemandPlanner(const PlannerParams& params)
       rescale_(params.boolean("rescale")),
       learn_(params.boolean("learn_sensitivity")),
       lamp_layer_(params.boolean("lamp_layer")),
+      kernel_tail_(params.boolean("kernel_tail")),
       default_sh_(default_ambient_sh()) {
   prediction_.enabled = true;
   prediction_.lookahead_s = params.number("lookahead_s");
@@ -167,7 +174,9 @@ Sh9Rgb DemandPlanner::current(const Probe& q) const {
     const Rgb k = light_now_ / q.light;
     for (auto& c : now.c) c *= k;
   }
-  if (q.has_lamps && lamp_level_ > 0.0) now += q.sh_lamps * static_cast<float>(lamp_level_);
+  if (q.has_lamps() && lamp_level_ > 0.0) {
+    now += pool_.sets[static_cast<std::size_t>(q.lamps)] * static_cast<float>(lamp_level_);
+  }
   return now;
 }
 
@@ -175,7 +184,46 @@ Sh9Rgb DemandPlanner::shown(const Probe& q) const {
   const Sh9Rgb now = current(q);
   // A leaving probe keeps its value; an arriving or refreshed one blends from the old.
   const double fin = q.fade_out_start >= 0.0 ? 1.0 : fade_in_fraction(q);
-  return fin >= 1.0 ? now : sh_lerp(q.from, now, static_cast<float>(fin));
+  if (fin >= 1.0 || q.from < 0) return now;
+  return sh_lerp(pool_.sets[static_cast<std::size_t>(q.from)], now, static_cast<float>(fin));
+}
+
+void DemandPlanner::add_shown(const Probe& q, float w, Sh9Rgb& sum) const {
+  const double fin = q.fade_out_start >= 0.0 || q.from < 0 ? 1.0 : fade_in_fraction(q);
+  const float a = static_cast<float>(fin);
+  Rgb k(w * a);
+  if (rescale_) k *= light_now_ / q.light;
+  for (int i = 0; i < kShCount; ++i)
+    sum.c[static_cast<std::size_t>(i)] += q.sh.c[static_cast<std::size_t>(i)] * k;
+  if (q.has_lamps() && lamp_level_ > 0.0) {
+    const float l = w * a * static_cast<float>(lamp_level_);
+    const Sh9Rgb& lamps = pool_.sets[static_cast<std::size_t>(q.lamps)];
+    for (int i = 0; i < kShCount; ++i)
+      sum.c[static_cast<std::size_t>(i)] += lamps.c[static_cast<std::size_t>(i)] * l;
+  }
+  if (a < 1.0f) {
+    const float b = w * (1.0f - a);
+    const Sh9Rgb& from = pool_.sets[static_cast<std::size_t>(q.from)];
+    for (int i = 0; i < kShCount; ++i)
+      sum.c[static_cast<std::size_t>(i)] += from.c[static_cast<std::size_t>(i)] * b;
+  }
+}
+
+std::int32_t DemandPlanner::SetPool::add(const Sh9Rgb& sh) {
+  if (!free.empty()) {
+    const std::int32_t slot = free.back();
+    free.pop_back();
+    sets[static_cast<std::size_t>(slot)] = sh;
+    return slot;
+  }
+  sets.push_back(sh);
+  return static_cast<std::int32_t>(sets.size() - 1);
+}
+
+void DemandPlanner::SetPool::release(std::int32_t& slot) {
+  if (slot < 0) return;
+  free.push_back(slot);
+  slot = -1;
 }
 
 bool DemandPlanner::near_lamps(const glm::dvec3& p) const {
@@ -198,22 +246,51 @@ DemandPlanner::Probe* DemandPlanner::find_probe(std::uint64_t tag) {
   return nullptr;
 }
 
-double DemandPlanner::kernel(const Probe& q, double d) const {
+double DemandPlanner::kernel(const Probe& q, double d2) const {
   // Smooth, and continuous everywhere: a compact bump over 1.5 spacings (neighbours one
-  // spacing apart overlap, so weights change continuously as a receiver moves), plus a faint
-  // long tail so that a point outside every bump still blends its nearest probes smoothly
-  // instead of switching from one to the next.
-  const double r = 1.5 * q.spacing;
-  const double u = d / r;
-  const double bump = u < 1.0 ? (1.0 - u * u) * (1.0 - u * u) : 0.0;
-  const double u2 = u * u;
-  return bump + 1e-4 / (1.0 + u2 * u2);
+  // spacing apart overlap, so weights change continuously as a receiver moves). Compact so
+  // that a spatial index finds every contributor: an earlier faint tail (1e-4 / (1 + u^4))
+  // reached every probe of the level and made each lookup a scan of all of them
+  // (docs/PERFORMANCE.md gives what cutting it cost in accuracy).
+  const double r = support_radius(q);
+  const double u2 = d2 / (r * r);
+  const double bump = u2 < 1.0 ? (1.0 - u2) * (1.0 - u2) : 0.0;
+  return kernel_tail_ ? bump + 1e-4 / (1.0 + u2 * u2) : bump;
 }
 
-bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* meta) const {
+std::int64_t DemandPlanner::nearest_present(const glm::dvec3& p, bool reference,
+                                            double* distance) const {
+  auto present = [&](std::size_t i) { return presence(probes_[i]) > 0.0; };
+  std::int64_t best = -1;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  std::size_t scan_from = 0;
+  if (!reference) {
+    double d = 0.0;
+    best = index_.nearest(
+        p, [&](std::uint32_t i) -> const glm::dvec3& { return probes_[i].position; },
+        [&](std::uint32_t i) { return present(i); }, &d);
+    best_d2 = best >= 0 ? d * d : best_d2;
+    scan_from = index_.size();
+  }
+  for (std::size_t i = scan_from; i < probes_.size(); ++i) {
+    if (!present(i)) continue;
+    const glm::dvec3 v = probes_[i].position - p;
+    const double d2 = glm::dot(v, v);
+    if (d2 < best_d2 || (d2 == best_d2 && best >= 0 && static_cast<std::int64_t>(i) < best)) {
+      best_d2 = d2;
+      best = static_cast<std::int64_t>(i);
+    }
+  }
+  *distance = best >= 0 ? glm::distance(probes_[static_cast<std::size_t>(best)].position, p)
+                        : std::numeric_limits<double>::infinity();
+  return best;
+}
+
+bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* meta,
+                                bool reference) const {
   struct Candidate {
     double weight;
-    double distance;
+    double d2;
     std::size_t index;
   };
   std::array<Candidate, 8> top{};
@@ -221,41 +298,50 @@ bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* 
   double total = 0.0;
   Sh9Rgb sum;
   double time_sum = 0.0;
-  double nearest = std::numeric_limits<double>::infinity();
-  std::size_t nearest_index = 0;
-  for (std::size_t i = 0; i < probes_.size(); ++i) {
+  auto visit = [&](std::size_t i) {
     const Probe& q = probes_[i];
+    const glm::dvec3 v = q.position - p;
+    const double d2 = glm::dot(v, v);
+    const double r = support_radius(q);
+    if (d2 >= r * r && !kernel_tail_) return;
     const double f = presence(q);
-    if (f <= 0.0) continue;
-    const double d = glm::distance(q.position, p);
-    if (d < nearest) {
-      nearest = d;
-      nearest_index = i;
-    }
-    const double w = kernel(q, d) * f;
-    if (w <= 0.0) continue;
+    if (f <= 0.0) return;
+    const double w = kernel(q, d2) * f;
+    if (w <= 0.0) return;
     // The value itself also enters gradually, from what was shown here before.
-    sum += shown(q) * static_cast<float>(w);
+    add_shown(q, static_cast<float>(w), sum);
     total += w;
     time_sum += w * q.data_time;
-    // Keep the 8 heaviest as the reported contributors.
+    // Keep the 8 heaviest as the reported contributors (ties: the lower index, whatever the
+    // visiting order, so the index and the scan agree).
+    const Candidate c{w, d2, i};
+    auto lighter = [](const Candidate& x, const Candidate& y) {
+      return x.weight < y.weight || (x.weight == y.weight && x.index > y.index);
+    };
     if (count < 8) {
-      top[static_cast<std::size_t>(count++)] = {w, d, i};
+      top[static_cast<std::size_t>(count++)] = c;
     } else {
-      auto lightest = std::min_element(
-          top.begin(), top.end(), [](const auto& a, const auto& b) { return a.weight < b.weight; });
-      if (w > lightest->weight) *lightest = {w, d, i};
+      auto lightest = std::min_element(top.begin(), top.end(), lighter);
+      if (lighter(*lightest, c)) *lightest = c;
     }
+  };
+  std::size_t scan_from = 0;
+  if (!reference && !kernel_tail_) {
+    index_.for_each_candidate(p, visit);
+    scan_from = index_.size();
   }
+  for (std::size_t i = scan_from; i < probes_.size(); ++i) visit(i);
   if (total <= 0.0) {
-    if (!std::isfinite(nearest)) return false;
+    double nearest = 0.0;
+    const std::int64_t n = nearest_present(p, reference, &nearest);
+    if (n < 0) return false;
     // Outside every probe's support: the nearest one, honestly reported as far away.
-    const Probe& q = probes_[nearest_index];
+    const Probe& q = probes_[static_cast<std::size_t>(n)];
     out = shown(q);
     if (meta) {
       meta->contributors[0] = {q.tag, 1.0f};
       meta->contributor_count = 1;
-      meta->spacing_m = std::max(q.spacing * q.detail, 2.0 * nearest);
+      meta->spacing_m = std::max(static_cast<double>(q.spacing * q.detail), 2.0 * nearest);
       meta->data_time = q.data_time;
     }
     return true;
@@ -279,22 +365,22 @@ bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* 
     for (int k = 0; k < count; ++k) {
       meta->contributors[k] = {probes_[top[k].index].tag,
                                static_cast<float>(top[k].weight / total)};
-      if (top[k].distance < closest) {
-        closest = top[k].distance;
+      if (top[k].d2 < closest) {
+        closest = top[k].d2;
         closest_index = top[k].index;
       }
     }
     meta->contributor_count = count;
     const Probe& q = probes_[closest_index];
-    meta->spacing_m = std::max(q.spacing * q.detail, 2.0 * closest);
+    meta->spacing_m = std::max(static_cast<double>(q.spacing * q.detail), 2.0 * std::sqrt(closest));
     meta->data_time = time_sum / total;
   }
   return true;
 }
 
-LookupResult DemandPlanner::lookup(const glm::dvec3& p) const {
+LookupResult DemandPlanner::lookup_with(const glm::dvec3& p, bool reference) const {
   LookupResult r;
-  if (!interpolate(p, r.sh, &r)) {
+  if (!interpolate(p, r.sh, &r, reference)) {
     r.sh = default_sh_;
     r.fell_back = true;
     r.spacing_m = std::numeric_limits<double>::infinity();
@@ -303,17 +389,46 @@ LookupResult DemandPlanner::lookup(const glm::dvec3& p) const {
   return r;
 }
 
+LookupResult DemandPlanner::lookup(const glm::dvec3& p) const { return lookup_with(p, false); }
+
+LookupResult DemandPlanner::lookup_reference(const glm::dvec3& p) const {
+  return lookup_with(p, true);
+}
+
+void DemandPlanner::lookup_many(const LookupPoints& points, std::vector<LookupResult>& out) const {
+  out.resize(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    out[i] = lookup_with({points.x[i], points.y[i], points.z[i]}, false);
+  }
+}
+
+void DemandPlanner::reindex() {
+  std::vector<glm::dvec3> positions(probes_.size());
+  std::vector<double> radii(probes_.size());
+  for (std::size_t i = 0; i < probes_.size(); ++i) {
+    positions[i] = probes_[i].position;
+    radii[i] = support_radius(probes_[i]);
+  }
+  index_.build(positions, radii);
+  index_stale_ = false;
+}
+
 double DemandPlanner::nearest_distance(const glm::dvec3& c, double* detail) const {
-  double best = std::numeric_limits<double>::infinity();
   *detail = 1.0;
-  for (const auto& q : probes_) {
-    if (q.fade_out_start >= 0.0) continue;
-    const double d = glm::distance(q.position, c);
+  auto staying = [&](std::size_t i) { return probes_[i].fade_out_start < 0.0; };
+  double best = 0.0;
+  std::int64_t n = index_.nearest(
+      c, [&](std::uint32_t i) -> const glm::dvec3& { return probes_[i].position; },
+      [&](std::uint32_t i) { return staying(i); }, &best);
+  for (std::size_t i = index_.size(); i < probes_.size(); ++i) {
+    if (!staying(i)) continue;
+    const double d = glm::distance(probes_[i].position, c);
     if (d < best) {
       best = d;
-      *detail = q.detail;
+      n = static_cast<std::int64_t>(i);
     }
   }
+  if (n >= 0) *detail = probes_[static_cast<std::size_t>(n)].detail;
   for (const auto* m : {&planned_, &in_flight_}) {
     for (const auto& [tag, f] : *m) best = std::min(best, glm::distance(f.position, c));
   }
@@ -383,16 +498,35 @@ std::vector<CaptureRequest> DemandPlanner::plan(const FrameContext& ctx) {
     double distance;
     std::size_t index;
   };
+  // Only objects a capture could serve are ranked: within max_distance_m and without a probe
+  // within half their spacing (consider() would refuse the rest). Leaving the others out changes
+  // nothing but the refreshes' place in the order (below): an object refused for a near probe
+  // has an urgency of at most 1, so it only lets every stale probe go before the objects after
+  // it, which u_refused keeps. Objects out of range take no part (they cannot be served).
+  // A probe within a quarter spacing refuses an object whatever the detail factor (>= 0.5).
   std::vector<Ranked> order;
-  order.reserve(receivers_.size());
+  double u_refused = std::numeric_limits<double>::infinity();  // least urgency of those refused
+  auto staying = [&](std::uint32_t i) { return probes_[i].fade_out_start < 0.0; };
+  auto position_of = [&](std::uint32_t i) -> const glm::dvec3& { return probes_[i].position; };
   for (std::size_t i = 0; i < receivers_.size(); ++i) {
     const ReceiverView& r = receivers_[i];
     const glm::dvec3 at = r.position + horizon * r.velocity;
     const double to_camera = glm::distance(r.position, ctx.camera_position);
+    const double d = focus_.distance(at);
+    if (d > max_distance_) continue;
+    const double spacing = required_spacing(d);
+    if (index_.any_within(at, 0.25 * spacing, position_of, staying)) {
+      u_refused = std::min(u_refused, 0.5);  // its need is at most 0.25
+      continue;
+    }
     double detail = 1.0;
-    const double need =
-        by_need_ ? nearest_distance(at, &detail) / (required_spacing(focus_.distance(at)) * detail)
-                 : -to_camera;
+    const double gap = nearest_distance(at, &detail);
+    const double need = by_need_ ? gap / (spacing * detail) : -to_camera;
+    if (gap <= 0.5 * spacing * detail) {
+      u_refused =
+          std::min(u_refused, by_need_ ? need / 0.5 : std::numeric_limits<double>::infinity());
+      continue;
+    }
     order.push_back({need, to_camera, i});
   }
   std::sort(order.begin(), order.end(), [](const Ranked& a, const Ranked& b) {
@@ -431,6 +565,9 @@ std::vector<CaptureRequest> DemandPlanner::plan(const FrameContext& ctx) {
     }
     const ReceiverView& r = receivers_[k.index];
     consider(r.position + horizon * r.velocity);
+  }
+  while (next_stale < stale.size() && stale[next_stale].need > u_refused) {
+    refresh(probes_[stale[next_stale++].index]);
   }
   // 2. The camera's predicted path.
   for (double t : {0.0, 0.5, 1.0, 2.0}) {
@@ -477,27 +614,30 @@ void DemandPlanner::deliver(const FinishedProbe& probe) {
     const Rgb it_light = it->second.light;
     in_flight_.erase(it);
     if (q == nullptr || q->fade_out_start >= 0.0) return;  // it left meanwhile
-    q->from = shown(*q);
+    const Sh9Rgb was = shown(*q);
+    pool_.release(q->from);
+    q->from = pool_.add(was);
     q->sh = format_.store(probe.sh);
-    q->has_lamps = probe.has_lamp_layer;
-    q->sh_lamps = probe.has_lamp_layer ? format_.store(probe.sh_lamps) : Sh9Rgb{};
+    pool_.release(q->lamps);
+    if (probe.has_lamp_layer) q->lamps = pool_.add(format_.store(probe.sh_lamps));
     q->data_time = probe.requested_time;
     q->light = it_light;
     // How much its light changed for the drift predicted: its sensitivity to the world's rate.
-    const double observed = log_change(q->from, current(*q));
+    const double observed = log_change(was, current(*q));
     if (learn_ && it_drift > 0.0) {
       const double raw = it_drift / q->sensitivity;
-      q->sensitivity = std::clamp(0.5 * q->sensitivity + 0.5 * observed / raw, 0.1, 1.0);
+      q->sensitivity =
+          static_cast<float>(std::clamp(0.5 * q->sensitivity + 0.5 * observed / raw, 0.1, 1.0));
     }
     // The light went on changing while the capture rendered.
-    q->drift = std::max(0.0, q->drift - it_drift);
+    q->drift = static_cast<float>(std::max(0.0, q->drift - it_drift));
     q->refreshing = false;
     q->weight_fades_in = false;
     q->fade_in_start = -1.0;
-    q->fade_in = fade_s_;
+    q->fade_in = static_cast<float>(fade_s_);
     if (fade_rate_ > 0.0) {
-      q->fade_in = std::clamp(log_change(q->from, current(*q)) / fade_rate_, fade_s_,
-                              std::max(fade_s_, fade_max_s_));
+      q->fade_in = static_cast<float>(std::clamp(log_change(was, current(*q)) / fade_rate_, fade_s_,
+                                                 std::max(fade_s_, fade_max_s_)));
     }
     return;
   }
@@ -505,30 +645,31 @@ void DemandPlanner::deliver(const FinishedProbe& probe) {
   q.tag = probe.tag;
   q.position = probe.position;
   q.sh = format_.store(probe.sh);
-  q.has_lamps = probe.has_lamp_layer;
-  if (q.has_lamps) q.sh_lamps = format_.store(probe.sh_lamps);
+  if (probe.has_lamp_layer) q.lamps = pool_.add(format_.store(probe.sh_lamps));
   q.near_lamps = !lamps_.empty() && near_lamps(probe.position);
-  q.spacing = it->second.spacing;
+  q.spacing = static_cast<float>(it->second.spacing);
   q.data_time = probe.requested_time;
   q.light = it->second.light;
   Sh9Rgb before;
-  const bool had = interpolate(probe.position, before, nullptr);
-  q.from = had ? before : default_sh_;
+  const bool had = interpolate(probe.position, before, nullptr, false);
   const Sh9Rgb value = current(q);
   if (adapt_ && had) {
     const double a = luminance_l00(before), b = luminance_l00(value);
     if (std::abs(a - b) > adapt_de_ * std::max({a, b, 1e-9})) q.detail = 0.5;
   }
-  if (!had) q.from = value;  // the first probe anywhere: nothing to blend from but a guess
+  // The first probe anywhere has nothing to blend from but a guess: it shows its own value.
+  if (had) q.from = pool_.add(before);
   // The larger the change it brings, the slower it fades in (a change spread over more
   // frames stays under the visible step per frame), up to fade_max_s.
-  q.fade_in = fade_s_;
+  q.fade_in = static_cast<float>(fade_s_);
   if (fade_rate_ > 0.0 && had) {
-    q.fade_in =
-        std::clamp(log_change(q.from, value) / fade_rate_, fade_s_, std::max(fade_s_, fade_max_s_));
+    q.fade_in = static_cast<float>(std::clamp(log_change(before, value) / fade_rate_, fade_s_,
+                                              std::max(fade_s_, fade_max_s_)));
   }
   in_flight_.erase(it);
   probes_.push_back(q);
+  // Probes delivered since the last rebuild are scanned by every query: keep that tail short.
+  if (probes_.size() - index_.size() > kUnindexedTail) reindex();
 }
 
 void DemandPlanner::update(const FrameContext& ctx) {
@@ -550,14 +691,18 @@ void DemandPlanner::update(const FrameContext& ctx) {
         if (q.fade_out_start >= 0.0) continue;
         double rate = w->lighting_change_at ? w->lighting_change_at(q.position, now_)
                                             : info.sun_sky_change_rate;
-        if (q.near_lamps && !q.has_lamps) rate += lamp_rate;
-        q.drift += rate * q.sensitivity * dt;
+        if (q.near_lamps && !q.has_lamps()) rate += lamp_rate;
+        q.drift += static_cast<float>(rate * q.sensitivity * dt);
       }
     }
     light_now_ = scene_light(info);
   }
   for (auto& q : probes_) {
     if (q.fade_in_start < 0.0) q.fade_in_start = now_;
+    // Faded in (or leaving, which shows its own value): the set it faded from is not needed.
+    if (q.from >= 0 && (q.fade_out_start >= 0.0 || fade_in_fraction(q) >= 1.0)) {
+      pool_.release(q.from);
+    }
     if (q.fade_out_start >= 0.0) continue;
     if (now_ - q.data_time > lifetime_s_ || focus_.distance(q.position) > 1.5 * max_distance_) {
       q.fade_out_start = now_;
@@ -580,12 +725,20 @@ void DemandPlanner::update(const FrameContext& ctx) {
     far->fade_out_start = now_;
     --staying;
   }
+  const std::size_t before = probes_.size();
   probes_.erase(std::remove_if(probes_.begin(), probes_.end(),
-                               [&](const Probe& q) {
-                                 return q.fade_out_start >= 0.0 &&
-                                        now_ - q.fade_out_start >= fade_s_;
+                               [&](Probe& q) {
+                                 const bool gone =
+                                     q.fade_out_start >= 0.0 && now_ - q.fade_out_start >= fade_s_;
+                                 if (gone) {
+                                   pool_.release(q.from);
+                                   pool_.release(q.lamps);
+                                 }
+                                 return gone;
                                }),
                 probes_.end());
+  // The index addresses probes by position in probes_: rebuild it when any left or arrived.
+  if (probes_.size() != before || index_.size() != probes_.size()) reindex();
 }
 
 void DemandPlanner::set_receivers(const std::vector<ReceiverView>& receivers) {
@@ -595,16 +748,15 @@ void DemandPlanner::set_receivers(const std::vector<ReceiverView>& receivers) {
 PlannerStats DemandPlanner::stats() const {
   PlannerStats s;
   s.live_probes = static_cast<std::int64_t>(probes_.size());
-  // Each probe stores its set and the set it fades from, plus position, spacing and times.
-  const std::size_t per_probe = 2 * format_.bytes_per_set() + sizeof(Probe) - 3 * sizeof(Sh9Rgb);
-  std::size_t lamp_sets = 0;
-  for (const auto& q : probes_) lamp_sets += q.has_lamps ? 1 : 0;
-  // std::map nodes: about 4 pointers of overhead each.
+  // What is held, as held: the probes (their sets as 32-bit floats whatever the format: the
+  // format rounds values, the layout stays), the pool of fading and lamp sets, the index, the
+  // pending captures (std::map nodes: about 4 pointers of overhead each) and the receivers.
   const std::size_t per_pending = sizeof(Pending) + sizeof(std::uint64_t) + 4 * sizeof(void*);
-  s.bytes =
-      static_cast<std::int64_t>(probes_.size() * per_probe + lamp_sets * format_.bytes_per_set() +
-                                (planned_.size() + in_flight_.size()) * per_pending +
-                                receivers_.size() * sizeof(ReceiverView));
+  s.bytes = static_cast<std::int64_t>(probes_.size() * sizeof(Probe) +
+                                      pool_.sets.size() * sizeof(Sh9Rgb) +
+                                      pool_.free.size() * sizeof(std::int32_t) + index_.bytes() +
+                                      (planned_.size() + in_flight_.size()) * per_pending +
+                                      receivers_.size() * sizeof(ReceiverView));
   return s;
 }
 
@@ -612,7 +764,7 @@ void DemandPlanner::describe_nodes(std::vector<ProbeNodeView>& out) const {
   for (const auto& q : probes_) {
     ProbeNodeView v;
     v.centre = q.position;
-    v.half_extent = glm::dvec3(0.5 * q.spacing * q.detail);
+    v.half_extent = glm::dvec3(0.5 * static_cast<double>(q.spacing * q.detail));
     v.depth = q.detail < 1.0 ? 1 : 0;
     v.has_data = true;
     v.age_s = now_ - q.data_time;

@@ -32,6 +32,7 @@
 #include <map>
 #include <vector>
 
+#include "policies/ambisim/probe_index.h"
 #include "policies/core/coefficient_format.h"
 #include "policies/core/planner_info.h"
 #include "policies/core/planner_params.h"
@@ -53,7 +54,11 @@ class DemandPlanner final : public Planner {
   void deliver(const FinishedProbe& probe) override;
   void update(const FrameContext& ctx) override;
   LookupResult lookup(const glm::dvec3& p) const override;
+  void lookup_many(const LookupPoints& points, std::vector<LookupResult>& out) const override;
   PlannerStats stats() const override;
+  // The same lookup by a linear scan over every probe, without the index: the reference the
+  // index is tested against (equal to 1e-6) and the naive path of the benchmarks.
+  LookupResult lookup_reference(const glm::dvec3& p) const;
   void set_receivers(const std::vector<ReceiverView>& receivers) override;
   void describe_nodes(std::vector<ProbeNodeView>& out) const override;
 
@@ -63,25 +68,35 @@ class DemandPlanner final : public Planner {
   void set_budget(double faces_per_frame);
 
  private:
+  // 208 bytes: the set and what a lookup needs inline; the set a probe fades from and its lamp
+  // layer live in a pool, held only while fading and near lamps (memory per probe is a target).
   struct Probe {
     std::uint64_t tag = 0;
     glm::dvec3 position{0.0};
-    Sh9Rgb sh;           // as stored (format applied)
-    Sh9Rgb from;         // what lookups gave here before it arrived
-    double spacing = 0;  // the spacing it was placed for
-    double detail = 1;   // < 1 where the colour changes fast: neighbours come closer
+    Sh9Rgb sh;                // as stored (format applied)
+    Rgb light{1.0f};          // the scene's light level when it was captured (rescale)
+    float spacing = 0;        // the spacing it was placed for
+    float detail = 1;         // < 1 where the colour changes fast: neighbours come closer
+    float fade_in = 0;        // its fade-in duration (0 = at once)
+    float drift = 0;          // expected relative error since its data was captured
+    float sensitivity = 1;    // its light's change over the world's reported rate (learnt)
+    std::int32_t from = -1;   // pool slot: what lookups gave here before (while fading in)
+    std::int32_t lamps = -1;  // pool slot: the lamps at full power (as stored), if any
     double data_time = 0;
-    double fade_in = 0;           // its fade-in duration (0 = at once)
     double fade_in_start = -1;    // < 0: not started (starts at the first update after delivery)
     double fade_out_start = -1;   // >= 0: leaving
     bool weight_fades_in = true;  // false after a refresh: only the value fades
-    double drift = 0;             // expected relative error since its data was captured
-    double sensitivity = 1;       // its light's change over the world's reported rate (learnt)
-    Rgb light{1.0f};              // the scene's light level when it was captured (rescale)
     bool refreshing = false;      // a refresh capture for it is planned or in flight
     bool near_lamps = false;      // within the lamps' reach: their switching makes it stale
-    bool has_lamps = false;       // holds a lamp layer
-    Sh9Rgb sh_lamps;              // the lamps at full power (as stored)
+    bool has_lamps() const { return lamps >= 0; }
+  };
+  // Coefficient sets held apart from the probes, with slots reused in a fixed order.
+  struct SetPool {
+    std::vector<Sh9Rgb> sets;
+    std::vector<std::int32_t> free;
+    std::int32_t add(const Sh9Rgb& sh);
+    void release(std::int32_t& slot);
+    std::size_t held() const { return sets.size() - free.size(); }
   };
   struct Pending {
     glm::dvec3 position{0.0};
@@ -96,10 +111,20 @@ class DemandPlanner final : public Planner {
   double fade_in_fraction(const Probe& q) const;
   // Fade factor in [0, 1] of a probe at the current time (in and out).
   double presence(const Probe& q) const;
-  // Kernel weight of a probe for a point at distance d (compact, smooth).
-  double kernel(const Probe& q, double d) const;
-  // Interpolated coefficients at p from the current probes; false if none contributes.
-  bool interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* meta) const;
+  // Kernel weight of a probe for a point at squared distance d2: a compact, smooth bump over
+  // 1.5 spacings (support_radius), zero beyond.
+  double kernel(const Probe& q, double d2) const;
+  static double support_radius(const Probe& q) { return 1.5 * q.spacing; }
+  // Adds w x what the probe shows now (shown(), without building it) to sum.
+  void add_shown(const Probe& q, float w, Sh9Rgb& sum) const;
+  // Interpolated coefficients at p from the current probes; false if none is present. The
+  // index finds the probes (the linear scan when `reference`).
+  bool interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* meta, bool reference) const;
+  // The present probe nearest to p (-1: none), by the index or the linear scan.
+  std::int64_t nearest_present(const glm::dvec3& p, bool reference, double* distance) const;
+  LookupResult lookup_with(const glm::dvec3& p, bool reference) const;
+  // Rebuilds the index over every probe (after the set changed).
+  void reindex();
   // Distance from c to the nearest probe or pending capture, and the local detail factor.
   double nearest_distance(const glm::dvec3& c, double* detail) const;
   // The probe's value at the lamps' current level (its lamp layer added).
@@ -134,6 +159,7 @@ class DemandPlanner final : public Planner {
   bool rescale_;
   bool learn_;
   bool lamp_layer_;  // the parameter: lamp layers where the world has lamps
+  bool kernel_tail_;
   Sh9Rgb default_sh_;
 
   // The world's lamps (from the first frame's context).
@@ -149,7 +175,10 @@ class DemandPlanner final : public Planner {
   Focus focus_;
   std::vector<ReceiverView> receivers_;
   std::uint64_t next_tag_ = 1;
-  std::vector<Probe> probes_;                 // in delivery order
+  std::vector<Probe> probes_;  // in delivery order
+  SetPool pool_;
+  ProbeIndex index_;          // over probes_[0, index_.size()); later ones are scanned
+  bool index_stale_ = false;  // probes left since the last rebuild
   std::map<std::uint64_t, Pending> planned_;  // returned by plan(), not yet started
   std::map<std::uint64_t, Pending> in_flight_;
 };

@@ -54,6 +54,27 @@ TEST_CASE("every planner honours the contract on every scenario", "[contract]") 
         CHECK(lr.contributor_count >= 0);
         CHECK(lr.contributor_count <= 8);
       }
+      // The batch lookup is the single lookup, exactly, point for point.
+      // Points around the last receiver seen (where the planner holds data) and far away.
+      const glm::dvec3 centre =
+          reference->positions.empty() ? glm::dvec3(0.0) : reference->positions.back();
+      LookupPoints batch;
+      for (const glm::dvec3& p : {glm::dvec3(0.0), glm::dvec3(1e6, 1e6, 1e4)}) batch.push_back(p);
+      for (int k = 0; k < 40; ++k) {
+        const double a = 0.7 * k;
+        batch.push_back(centre +
+                        glm::dvec3(3.0 * k * std::cos(a), 3.0 * k * std::sin(a), 0.1 * k - 2.0));
+      }
+      std::vector<LookupResult> many;
+      planner->lookup_many(batch, many);
+      REQUIRE(many.size() == batch.size());
+      for (std::size_t k = 0; k < batch.size(); ++k) {
+        const LookupResult one = planner->lookup(batch.at(k));
+        CHECK(many[k].sh == one.sh);
+        CHECK(many[k].fell_back == one.fell_back);
+        CHECK(many[k].contributor_count == one.contributor_count);
+        CHECK(many[k].data_time == one.data_time);
+      }
       // Deterministic: a fresh planner on the same inputs gives the same result, byte for byte.
       auto again = test::make_test_planner(info.name);
       const RunResult r2 = simulate(sc, world, *reference, *again);

@@ -1,0 +1,228 @@
+#pragma once
+// A spatial index over probes with a support radius each (the ambisim planner's kernel reach),
+// for the two queries its lookups and its planning make: every probe whose support may hold a
+// point, and the nearest probe to a point.
+//
+// Why levels: the supports span a factor of 3-5 (1.5 spacings, from 1.5 m refined spacing next
+// to the camera to 4.8 m at 160 m) and more with other parameters. One grid sized for the
+// largest support would hand a lookup near the camera three to four times the candidates. Each
+// probe goes into the level whose cell is the smallest of the geometric series 1 m * sqrt(2)^L
+// that is at least its diameter; a ball of that radius around a point then meets at most two
+// cells per axis (the point's and the neighbour on the side of the nearer face), so a lookup
+// reads 8 cells per occupied level (2-3 levels in practice).
+//
+// Each level is a flat open-addressing hash table of cells (power-of-two capacity, load at most
+// one half) holding ranges of one array of probe slots, built by a counting sort: O(n) to build,
+// no allocation per cell, and a cell read is one or two cache lines. The index is rebuilt when
+// the probe set changes (the planner does so once per frame at most; probes delivered between
+// rebuilds are passed to queries as a short unindexed tail).
+//
+// Input ranges: positions finite; radii > 0 and finite. Points far outside every occupied cell
+// (beyond the world) are fine: cell coordinates are clamped to +-2^20 cells, which only makes
+// a far point's candidates an empty set, and nearest() falls back to a scan of a level when its
+// shells would visit more cells than the level holds probes.
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace ambisim {
+
+class ProbeIndex {
+ public:
+  // Rebuilds from slots 0..n-1: positions[i] and radii[i] (> 0). The index keeps no copy of
+  // the positions: nearest() is handed them again.
+  void build(std::span<const glm::dvec3> positions, std::span<const double> radii);
+  std::size_t size() const { return size_; }
+
+  // Calls visit(slot) for every slot whose radius may reach p: a superset of the slots with
+  // distance(p, position) < radius (the caller tests the distance). Each slot at most once.
+  template <class Visit>
+  void for_each_candidate(const glm::dvec3& p, Visit&& visit) const;
+
+  // The slot nearest to p among those accept(slot) returns true for (ties: the lower slot),
+  // or -1 when none; its distance in *distance. position_of(slot) gives the position the index
+  // was built with.
+  template <class PositionOf, class Accept>
+  std::int64_t nearest(const glm::dvec3& p, PositionOf&& position_of, Accept&& accept,
+                       double* distance) const;
+
+  // Whether a slot that accept(slot) returns true for lies within r of p (r >= 0).
+  template <class PositionOf, class Accept>
+  bool any_within(const glm::dvec3& p, double r, PositionOf&& position_of, Accept&& accept) const;
+
+  // Bytes held (cell tables and slot arrays), for PlannerStats.
+  std::size_t bytes() const;
+
+ private:
+  struct Cell {
+    std::uint64_t key = kEmpty;
+    std::uint32_t begin = 0;
+    std::uint32_t count = 0;
+  };
+  struct Level {
+    double cell_m = 1.0;
+    double inv_cell = 1.0;
+    std::vector<Cell> table;           // open addressing, capacity a power of two
+    std::vector<std::uint32_t> slots;  // the level's slots, grouped by cell
+    glm::ivec3 lo{0}, hi{-1};          // bounds of the occupied cell coordinates
+    const Cell* find(std::uint64_t key) const;
+    Cell* find_or_insert(std::uint64_t key);
+  };
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+  static constexpr int kCoordLimit = 1 << 20;
+  static int cell_coord(double v, double inv_cell);
+  static std::uint64_t pack(int x, int y, int z);
+  static std::size_t hash(std::uint64_t key);
+
+  template <class Visit>
+  static void visit_cell(const Level& level, int x, int y, int z, Visit&& visit);
+
+  std::size_t size_ = 0;
+  std::vector<Level> levels_;  // only the occupied ones, finest first
+};
+
+inline int ProbeIndex::cell_coord(double v, double inv_cell) {
+  const double c = std::floor(v * inv_cell);
+  if (!(c > -kCoordLimit)) return -kCoordLimit;  // also NaN
+  if (c >= kCoordLimit) return kCoordLimit;
+  return static_cast<int>(c);
+}
+
+inline std::uint64_t ProbeIndex::pack(int x, int y, int z) {
+  constexpr std::uint64_t kMask = (std::uint64_t{1} << 21) - 1;
+  const auto u = [](int v) { return static_cast<std::uint64_t>(v + kCoordLimit) & kMask; };
+  return u(x) | (u(y) << 21) | (u(z) << 42);
+}
+
+inline std::size_t ProbeIndex::hash(std::uint64_t key) {
+  key ^= key >> 29;
+  key *= 0xbf58476d1ce4e5b9ULL;
+  key ^= key >> 32;
+  return static_cast<std::size_t>(key);
+}
+
+inline const ProbeIndex::Cell* ProbeIndex::Level::find(std::uint64_t key) const {
+  const std::size_t mask = table.size() - 1;
+  for (std::size_t i = hash(key) & mask;; i = (i + 1) & mask) {
+    const Cell& c = table[i];
+    if (c.key == key) return &c;
+    if (c.key == kEmpty) return nullptr;
+  }
+}
+
+template <class Visit>
+void ProbeIndex::visit_cell(const Level& level, int x, int y, int z, Visit&& visit) {
+  if (x < level.lo.x || x > level.hi.x || y < level.lo.y || y > level.hi.y || z < level.lo.z ||
+      z > level.hi.z) {
+    return;
+  }
+  const Cell* c = level.find(pack(x, y, z));
+  if (c == nullptr) return;
+  const std::uint32_t* s = level.slots.data() + c->begin;
+  for (std::uint32_t k = 0; k < c->count; ++k) visit(s[k]);
+}
+
+template <class Visit>
+void ProbeIndex::for_each_candidate(const glm::dvec3& p, Visit&& visit) const {
+  for (const Level& level : levels_) {
+    // The ball of radius <= cell / 2 around p meets the cell holding p and, per axis, the
+    // neighbour on the side of the nearer face.
+    const double fx = p.x * level.inv_cell, fy = p.y * level.inv_cell, fz = p.z * level.inv_cell;
+    const int x = cell_coord(p.x, level.inv_cell), y = cell_coord(p.y, level.inv_cell),
+              z = cell_coord(p.z, level.inv_cell);
+    const int dx = fx - std::floor(fx) < 0.5 ? -1 : 1;
+    const int dy = fy - std::floor(fy) < 0.5 ? -1 : 1;
+    const int dz = fz - std::floor(fz) < 0.5 ? -1 : 1;
+    for (int k = 0; k < 8; ++k) {
+      visit_cell(level, x + ((k & 1) ? dx : 0), y + ((k & 2) ? dy : 0), z + ((k & 4) ? dz : 0),
+                 visit);
+    }
+  }
+}
+
+template <class PositionOf, class Accept>
+std::int64_t ProbeIndex::nearest(const glm::dvec3& p, PositionOf&& position_of, Accept&& accept,
+                                 double* distance) const {
+  double best2 = std::numeric_limits<double>::infinity();
+  std::int64_t best = -1;
+  auto consider = [&](std::uint32_t s) {
+    if (!accept(s)) return;
+    const glm::dvec3 d = position_of(s) - p;
+    const double d2 = d.x * d.x + d.y * d.y + d.z * d.z;
+    if (d2 < best2 || (d2 == best2 && static_cast<std::int64_t>(s) < best)) {
+      best2 = d2;
+      best = s;
+    }
+  };
+  for (const Level& level : levels_) {
+    const int x = cell_coord(p.x, level.inv_cell), y = cell_coord(p.y, level.inv_cell),
+              z = cell_coord(p.z, level.inv_cell);
+    std::size_t visited = 0;
+    for (int ring = 0;; ++ring) {
+      // Every cell of ring k is at least (k - 1) cells away from p.
+      const double bound = static_cast<double>(ring - 1) * level.cell_m;
+      if (ring > 0 && bound > 0.0 && bound * bound > best2) break;
+      // Past the occupied box on every side: nothing more in this level.
+      if (x - ring < level.lo.x && x + ring > level.hi.x && y - ring < level.lo.y &&
+          y + ring > level.hi.y && z - ring < level.lo.z && z + ring > level.hi.z) {
+        break;
+      }
+      const std::size_t ring_cells = ring == 0 ? 1 : static_cast<std::size_t>(24 * ring * ring + 2);
+      if (visited + ring_cells > level.slots.size() + 27) {
+        // Shells would cost more than the level's probes: scan them instead.
+        for (std::uint32_t s : level.slots) consider(s);
+        break;
+      }
+      visited += ring_cells;
+      for (int i = -ring; i <= ring; ++i) {
+        for (int j = -ring; j <= ring; ++j) {
+          const bool edge_ij = i == -ring || i == ring || j == -ring || j == ring;
+          if (edge_ij) {
+            for (int k = -ring; k <= ring; ++k) visit_cell(level, x + i, y + j, z + k, consider);
+          } else {
+            visit_cell(level, x + i, y + j, z - ring, consider);
+            if (ring > 0) visit_cell(level, x + i, y + j, z + ring, consider);
+          }
+        }
+      }
+    }
+  }
+  *distance = best >= 0 ? std::sqrt(best2) : std::numeric_limits<double>::infinity();
+  return best;
+}
+
+template <class PositionOf, class Accept>
+bool ProbeIndex::any_within(const glm::dvec3& p, double r, PositionOf&& position_of,
+                            Accept&& accept) const {
+  const double r2 = r * r;
+  bool found = false;
+  auto test = [&](std::uint32_t s) {
+    if (found || !accept(s)) return;
+    const glm::dvec3 d = position_of(s) - p;
+    found = d.x * d.x + d.y * d.y + d.z * d.z <= r2;
+  };
+  for (const Level& level : levels_) {
+    const double inv = level.inv_cell;
+    const int x0 = cell_coord(p.x - r, inv), x1 = cell_coord(p.x + r, inv);
+    const int y0 = cell_coord(p.y - r, inv), y1 = cell_coord(p.y + r, inv);
+    const int z0 = cell_coord(p.z - r, inv), z1 = cell_coord(p.z + r, inv);
+    const auto cells = static_cast<double>(x1 - x0 + 1) * (y1 - y0 + 1) * (z1 - z0 + 1);
+    if (cells > static_cast<double>(level.slots.size())) {
+      for (std::uint32_t s : level.slots) test(s);
+    } else {
+      for (int x = x0; x <= x1 && !found; ++x) {
+        for (int y = y0; y <= y1 && !found; ++y) {
+          for (int z = z0; z <= z1 && !found; ++z) visit_cell(level, x, y, z, test);
+        }
+      }
+    }
+    if (found) return true;
+  }
+  return false;
+}
+
+}  // namespace ambisim
