@@ -97,7 +97,7 @@ void RunMetrics::begin_frame(std::int64_t frame, double time, double dt, bool ca
 
 void RunMetrics::receiver(std::uint64_t id, std::span<const Rgb> planner_e,
                           std::span<const Rgb> reference_e, const LookupResult& lookup,
-                          const ReceiverViewing& view) {
+                          const ReceiverViewing& view, int stratum) {
   require_frame("receiver");
   const std::size_t n = settings_.normals.size();
   if (planner_e.size() != n || reference_e.size() != n) {
@@ -105,6 +105,9 @@ void RunMetrics::receiver(std::uint64_t id, std::span<const Rgb> planner_e,
                                 std::to_string(n) + " planner and reference irradiances");
   }
   const double weight = view.weight > 0.0 && std::isfinite(view.weight) ? view.weight : 0.0;
+  ReceiverTotals& totals = tally_.at(id, stratum);
+  totals.seconds += row_.dt;
+  totals.viewed_seconds += weight * row_.dt;
   double error_sum = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
     planner_lab_[k] = display_lab(planner_e[k], settings_.exposure);
@@ -122,8 +125,12 @@ void RunMetrics::receiver(std::uint64_t id, std::span<const Rgb> planner_e,
       rel_.add(rel);
       de_samples_.push_back(static_cast<float>(de));
       rel_samples_.push_back(static_cast<float>(rel));
+      totals.de_sum += de;
+      ++totals.samples;
       const double w = weight * share_[k];
       if (w > 0.0) {
+        totals.viewed_de_sum += w * de;
+        totals.viewed_weight += w;
         frame_de_viewed_.add(de, w);
         de_viewed_.add(de, w);
         de_viewed_max_.add(de);
@@ -138,6 +145,7 @@ void RunMetrics::receiver(std::uint64_t id, std::span<const Rgb> planner_e,
     if (weight > 0.0) change_viewed_.add(ev.viewed_change);
   }
   if (ev.pop) {
+    ++totals.pops;
     ++row_.pops;
     ++pop_count_;
     pop_sum_ += ev.change;
@@ -146,6 +154,7 @@ void RunMetrics::receiver(std::uint64_t id, std::span<const Rgb> planner_e,
     ++row_.viewed_pops;
     ++viewed_pop_count_;
     viewed_pop_weight_ += weight;
+    totals.viewed_pop_weight += weight;
   }
   row_.view_weight += weight;
   response_.update(id, row_.frame, row_.time, reference_lab_, error_sum / static_cast<double>(n));
@@ -230,6 +239,13 @@ Summary RunMetrics::summary() const {
   s.viewed_receiver_minutes = viewed_seconds_ / 60.0;
   s.receiver_frames = receiver_frames_;
   s.samples = de_.count();
+  s.sample.stride = sample_stride_;
+  s.sample.receivers_scored = static_cast<std::int64_t>(tally_.size());
+  s.sample.receivers_lit = std::max(receivers_lit_, s.sample.receivers_scored);
+  if (sample_stride_ > 1) {
+    // 400 replicates: the interval ends move by about 1% of its width between seeds.
+    s.sample.ci95 = bootstrap_intervals(tally_.totals(), 400, 0x5a3f1e77u);
+  }
   {
     std::vector<WeightedSample> viewed = de_viewed_samples_;  // sorted by the percentile
     s.de2000_viewed = {de_viewed_.mean(), weighted_percentile(viewed, 95.0), de_viewed_max_.max()};
@@ -317,6 +333,19 @@ nlohmann::ordered_json RunMetrics::to_json(const Summary& s) {
   j["probes"]["mean_live"] = number_or_null(s.probes.mean_live);
   j["memory"]["max_bytes"] = s.memory.max_bytes;
   j["memory"]["mean_bytes"] = number_or_null(s.memory.mean_bytes);
+  j["sample"]["stride"] = s.sample.stride;
+  j["sample"]["receivers_scored"] = s.sample.receivers_scored;
+  j["sample"]["receivers_lit"] = s.sample.receivers_lit;
+  const auto interval = [](const Interval& i) {
+    J k;
+    k["low"] = number_or_null(i.low);
+    k["high"] = number_or_null(i.high);
+    return k;
+  };
+  j["sample"]["ci95"]["de2000_viewed_mean"] = interval(s.sample.ci95.de2000_viewed_mean);
+  j["sample"]["ci95"]["de2000_mean"] = interval(s.sample.ci95.de2000_mean);
+  j["sample"]["ci95"]["pops_viewed_per_min"] = interval(s.sample.ci95.pops_viewed_per_min);
+  j["sample"]["ci95"]["pops_per_min"] = interval(s.sample.ci95.pops_per_min);
   return j;
 }
 

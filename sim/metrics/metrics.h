@@ -58,6 +58,7 @@
 #include "sim/metrics/coverage.h"
 #include "sim/metrics/metric_settings.h"
 #include "sim/metrics/response_time.h"
+#include "sim/metrics/sample_interval.h"
 #include "sim/planner.h"
 
 namespace ambisim {
@@ -161,6 +162,15 @@ struct Summary {
     std::int64_t max_bytes = 0;
     double mean_bytes = 0.0;
   } memory;
+  // The receivers scored (a game's load: every stride-th of each kind; 1 = all of them), how
+  // many the planner lit, and the 95% intervals of the scores from the sample (NaN when every
+  // receiver is scored: the scores are then exact).
+  struct {
+    std::int64_t stride = 1;
+    std::int64_t receivers_scored = 0;
+    std::int64_t receivers_lit = 0;
+    SampleIntervals ci95;
+  } sample;
 };
 
 class RunMetrics {
@@ -173,8 +183,15 @@ class RunMetrics {
   void begin_frame(std::int64_t frame, double time, double dt, bool camera_cut = false);
   // Throws std::invalid_argument unless both spans hold one value per normal. A receiver given
   // no view weighs 0 in the viewed metrics.
+  // `stratum`: the receiver's stratum in a sampled referee (its kind), for the intervals.
   void receiver(std::uint64_t id, std::span<const Rgb> planner_e, std::span<const Rgb> reference_e,
-                const LookupResult& lookup, const ReceiverViewing& view = {});
+                const LookupResult& lookup, const ReceiverViewing& view = {}, int stratum = 0);
+  // A sampled referee: every `stride`-th receiver is scored, of `receivers_lit` the planner
+  // lit (summary().sample). Call any time before summary().
+  void set_sample(std::int64_t stride, std::int64_t receivers_lit) {
+    sample_stride_ = stride;
+    receivers_lit_ = receivers_lit;
+  }
   void demand_point(const LookupResult& lookup, double distance_to_camera_m, DemandKind kind);
   void costs(const FrameCosts& c);
   // The preload's cost, once, before or in the first frame.
@@ -192,7 +209,10 @@ class RunMetrics {
   // staleness{mean,max},
   // faces{requested,granted,used,refused}, captures{refused}, bake{captures,faces},
   // probes{max_live,mean_live},
-  // memory{max_bytes,mean_bytes}. Non-finite values are written as null.
+  // memory{max_bytes,mean_bytes},
+  // sample{stride,receivers_scored,receivers_lit,ci95{de2000_viewed_mean{low,high},
+  // de2000_mean{low,high},pops_viewed_per_min{low,high},pops_per_min{low,high}}}. Non-finite values
+  // are written as null.
   static nlohmann::ordered_json to_json(const Summary& s);
 
  private:
@@ -237,6 +257,9 @@ class RunMetrics {
   std::int64_t max_live_ = 0;
   std::int64_t max_bytes_ = 0;
   TimeWeightedMean live_mean_, bytes_mean_;
+  ReceiverTally tally_;
+  std::int64_t sample_stride_ = 1;
+  std::int64_t receivers_lit_ = 0;
 };
 
 // Fixed, locale-independent number text for CSV: shortest "%.6g" equivalent via std::to_chars

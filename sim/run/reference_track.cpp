@@ -7,6 +7,7 @@
 
 #include "sim/metrics/accuracy.h"
 #include "sim/render/capture.h"
+#include "sim/scenario/receiver_sample.h"
 #include "sim/scenario/scenario.h"
 #include "sim/scenario/scenario_motion.h"
 #include "sim/sh/irradiance_reference.h"
@@ -52,8 +53,11 @@ std::shared_ptr<const ReferenceTrack> compute_reference_track(const Scenario& sc
   {
     ScenarioMotion motion(scenario, world);
     while (motion.next()) {
-      ReferenceTrack::FrameSpan span{track->ids.size(), motion.receivers().size()};
+      // Only the receivers the referee scores (all of them unless the scenario samples).
+      ReferenceTrack::FrameSpan span{track->ids.size(), 0};
       for (const auto& r : motion.receivers()) {
+        if (!receiver_scored(scenario.reference, r)) continue;
+        ++span.count;
         by_receiver[r.id].push_back({r.position, motion.current().frame.time, track->ids.size()});
         track->ids.push_back(r.id);
         track->positions.push_back(r.position);

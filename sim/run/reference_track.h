@@ -30,7 +30,9 @@ struct ReferenceTrack {
   std::vector<glm::dvec3> normals;
   struct FrameSpan {
     std::size_t begin = 0;  // first receiver slot of this frame
-    std::size_t count = 0;  // live receivers (in id order, as ScenarioMotion gives them)
+    // live receivers the referee scores (in id order, as ScenarioMotion gives them; every
+    // live one unless the scenario samples them: receiver_sample.h)
+    std::size_t count = 0;
   };
   std::vector<FrameSpan> frames;
   std::vector<std::uint64_t> ids;  // receiver id per slot

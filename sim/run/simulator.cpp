@@ -13,6 +13,7 @@
 #include "sim/render/capture.h"
 #include "sim/scenario/capture_budget.h"
 #include "sim/scenario/frame_schedule.h"
+#include "sim/scenario/receiver_sample.h"
 #include "sim/scenario/scenario_motion.h"
 #include "sim/sh/sh_projection.h"
 #include "sim/world/illumination.h"
@@ -145,6 +146,7 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
   std::vector<Planner::ReceiverView> views;
   std::vector<Rgb> planner_e(nn);
   std::vector<LookupResult> receiver_lookups, demand_lookups;
+  LookupPoints receiver_points, demand_points_soa;
   std::size_t frame_index = 0;
   // Snapshots feed the views; a 30-minute run would otherwise write gigabytes of them.
   const double snapshot_every =
@@ -203,8 +205,16 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
     return p;
   };
 
+  std::int64_t receivers_lit = 0;  // receivers the planner lit (ids only grow)
+  std::uint64_t last_id_lit = 0;
   while (motion.next()) {
     const MotionFrame& mf = motion.current();
+    for (const auto& r : motion.receivers()) {
+      if (receivers_lit == 0 || r.id > last_id_lit) {
+        ++receivers_lit;
+        last_id_lit = r.id;
+      }
+    }
     const std::size_t receiver_count = motion.receivers().size();
     ReferenceTrack::FrameSpan span{0, receiver_count};
     if (reference != nullptr) {
@@ -212,7 +222,10 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
         throw std::logic_error("reference track is shorter than the run");
       }
       span = reference->frames[frame_index];
-      if (span.count != receiver_count) {
+      std::size_t scored = 0;
+      for (const auto& r : motion.receivers())
+        scored += receiver_scored(scenario.reference, r) ? 1 : 0;
+      if (span.count != scored) {
         throw std::logic_error("reference track does not match the scenario's receivers");
       }
     }
@@ -354,26 +367,31 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
     // 5. look up every receiver and demand point (only the lookups are timed), then score.
     const std::vector<DemandPoint> demand =
         demand_points(mf.camera.position, mf.camera.velocity, ground, settings.demand);
-    receiver_lookups.clear();
-    demand_lookups.clear();
+    // One batch per kind (Planner::lookup_many), the receivers' as a game would light them.
+    receiver_points.clear();
+    for (const auto& r : motion.receivers()) receiver_points.push_back(r.position);
+    demand_points_soa.clear();
+    for (const auto& d : demand) demand_points_soa.push_back(d.position);
     const auto tl = Clock::now();
-    for (std::size_t k = 0; k < receiver_count; ++k) {
-      receiver_lookups.push_back(planner.lookup(motion.receivers()[k].position));
-    }
-    for (const auto& d : demand) demand_lookups.push_back(planner.lookup(d.position));
+    planner.lookup_many(receiver_points, receiver_lookups);
+    planner.lookup_many(demand_points_soa, demand_lookups);
     result.timing.lookup_s += seconds_since(tl);
     result.timing.lookups += static_cast<std::int64_t>(receiver_count + demand.size());
     const CameraView view(motion.view(), mf.camera.position, mf.look);
+    std::size_t slot = span.begin;  // the next scored receiver's reference slot
     for (std::size_t k = 0; k < receiver_count; ++k) {
       const Receiver& r = motion.receivers()[k];
       const LookupResult& lr = receiver_lookups[k];
-      if (reference != nullptr) {
+      if (reference != nullptr && receiver_scored(scenario.reference, r)) {
+        if (reference->ids[slot] != r.id) {
+          throw std::logic_error("reference track does not match the scenario's receivers");
+        }
         for (std::size_t m = 0; m < nn; ++m) {
           planner_e[m] = sh_irradiance(lr.sh, settings.normals[m]);
         }
-        metrics.receiver(r.id, planner_e,
-                         std::span<const Rgb>(reference->values(span.begin + k), nn), lr,
-                         receiver_viewing(view, r));
+        metrics.receiver(r.id, planner_e, std::span<const Rgb>(reference->values(slot), nn), lr,
+                         receiver_viewing(view, r), receiver_stratum(r));
+        ++slot;
       }
       metrics.demand_point(lr, glm::length(r.position - mf.camera.position), DemandKind::receiver);
     }
@@ -407,6 +425,7 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
     if (options.keep_frames) result.frames.push_back(row);
     ++frame_index;
   }
+  metrics.set_sample(scenario.reference.sample_stride, receivers_lit);
   result.summary = metrics.summary();
   result.timing.frames = static_cast<std::int64_t>(frame_index);
   result.timing.total_s = seconds_since(t_start);

@@ -164,6 +164,7 @@ Receiver& ReceiverSet::spawn(ReceiverKind kind, double time) {
   r.kind = kind;
   r.spawn_time = time;
   r.despawn_time = kInf;
+  r.kind_order = counters_.spawned[kind_index(kind)];
   live_.push_back(r);  // ids only grow, so appending keeps id order
   ++counters_.spawned[kind_index(kind)];
   return live_.back();

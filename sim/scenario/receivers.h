@@ -38,8 +38,9 @@ struct Receiver {
   // Traffic motion: road arc length at spawn and lane direction (+1 / -1 along the road).
   double road_s0 = 0.0;
   int lane_direction = 0;
-  double road_speed = 0.0;  // traffic: this vehicle's speed along the road (m/s)
-  std::size_t track = 0;    // recorded: index into RecordedReceivers::tracks
+  double road_speed = 0.0;      // traffic: this vehicle's speed along the road (m/s)
+  std::size_t track = 0;        // recorded: index into RecordedReceivers::tracks
+  std::int64_t kind_order = 0;  // its place in its kind's spawn order (0: the first)
 };
 
 struct CameraObjectRecord {

@@ -39,6 +39,8 @@ ReferenceSettings parse_reference(ObjectReader& r) {
   s.face_size = r.integer("face_size", s.face_size, Range::closed(4, 256));
   s.interval_s = r.number("interval_s", s.interval_s, Range::closed(0.0, 10.0));
   s.refine_de = r.number("refine_de", s.refine_de, Range::positive());
+  s.sample_stride = r.integer("sample_stride", s.sample_stride, Range::closed(1, 1e6));
+  s.sample_seed = static_cast<std::uint64_t>(r.integer("sample_seed", 1, Range::closed(0, 2e9)));
   r.finish();
   return s;
 }

@@ -21,6 +21,12 @@ struct ReferenceSettings {
   int face_size = 24;       // cube face resolution of reference captures at receivers
   double interval_s = 0.0;  // 0: every frame; > 0: moving receivers sampled on this time grid
                             // and interpolated linearly in time between samples
+  // A game's load: the reference and the scores cover every sample_stride-th receiver of each
+  // kind in spawn order, from an offset per kind drawn from sample_seed (stratified systematic
+  // sampling: equal odds for every receiver, spread over kinds and spawn times); the planner
+  // still lights every receiver. 1: every receiver.
+  int sample_stride = 1;
+  std::uint64_t sample_seed = 1;
   double refine_de = 0.25;  // with interval_s > 0: a frame between two samples that differ by
                             // more is captured too, and its halves refined while linear
                             // interpolation mispredicts it by more (dE00)

@@ -159,10 +159,10 @@ TEST_CASE("summary JSON: key order, nulls without data", "[metrics]") {
   const nlohmann::ordered_json j = RunMetrics::to_json(m.summary());
   std::vector<std::string> keys;
   for (const auto& [k, v] : j.items()) keys.push_back(k);
-  CHECK(keys == std::vector<std::string>{"frames", "duration_s", "receiver_minutes",
-                                         "viewed_receiver_minutes", "receiver_frames", "samples",
-                                         "error", "pops", "response", "coverage", "staleness",
-                                         "faces", "captures", "bake", "probes", "memory"});
+  CHECK(keys == std::vector<std::string>{
+                    "frames", "duration_s", "receiver_minutes", "viewed_receiver_minutes",
+                    "receiver_frames", "samples", "error", "pops", "response", "coverage",
+                    "staleness", "faces", "captures", "bake", "probes", "memory", "sample"});
   CHECK(j["error"]["viewed"]["de2000"]["p95"].is_null());
   CHECK(j["error"]["uniform"]["de2000"]["p95"].is_null());
   CHECK(j["pops"]["viewed"]["per_min"].is_null());
