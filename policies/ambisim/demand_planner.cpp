@@ -15,6 +15,10 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 // Probes delivered between index rebuilds, scanned linearly by queries until the next.
 constexpr std::size_t kUnindexedTail = 32;
+// Bump weight below which a lookup mixes in the tail of every probe: about 1.24 spacings from
+// the nearest probe, beyond the gaps the planner leaves between the probes it places (a point
+// midway between two probes one spacing apart weighs 1.6).
+constexpr double kBumpConfidence = 0.1;
 
 // The largest change between two coefficient sets as a log ratio of irradiance, over the six
 // axis normals and the three channels (channels darker than 1% of the brightest are lifted to
@@ -258,36 +262,14 @@ double DemandPlanner::kernel(const Probe& q, double d2) const {
   return kernel_tail_ ? bump + 1e-4 / (1.0 + u2 * u2) : bump;
 }
 
-std::int64_t DemandPlanner::nearest_present(const glm::dvec3& p, bool reference,
-                                            double* distance) const {
-  auto present = [&](std::size_t i) { return presence(probes_[i]) > 0.0; };
-  std::int64_t best = -1;
-  double best_d2 = std::numeric_limits<double>::infinity();
-  std::size_t scan_from = 0;
-  if (!reference) {
-    double d = 0.0;
-    best = index_.nearest(
-        p, [&](std::uint32_t i) -> const glm::dvec3& { return probes_[i].position; },
-        [&](std::uint32_t i) { return present(i); }, &d);
-    best_d2 = best >= 0 ? d * d : best_d2;
-    scan_from = index_.size();
-  }
-  for (std::size_t i = scan_from; i < probes_.size(); ++i) {
-    if (!present(i)) continue;
-    const glm::dvec3 v = probes_[i].position - p;
-    const double d2 = glm::dot(v, v);
-    if (d2 < best_d2 || (d2 == best_d2 && best >= 0 && static_cast<std::int64_t>(i) < best)) {
-      best_d2 = d2;
-      best = static_cast<std::int64_t>(i);
-    }
-  }
-  *distance = best >= 0 ? glm::distance(probes_[static_cast<std::size_t>(best)].position, p)
-                        : std::numeric_limits<double>::infinity();
-  return best;
-}
-
 bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* meta,
                                 bool reference) const {
+  // Two blends: the bumps (compact, found by the index) and, only where the bumps' total weight
+  // is below kBumpConfidence, the faint tail of every probe, 1 / (1 + u^4) (a linear scan:
+  // rare, away from every probe). The answer is alpha x bumps + (1 - alpha) x tail with
+  // alpha = min(1, bump total / kBumpConfidence): continuous everywhere and in time (both
+  // blends are, and alpha is), so a receiver crossing the edge of the probes' reach does not
+  // pop, as it did with the nearest probe there (README, "A game's load").
   struct Candidate {
     double weight;
     double d2;
@@ -295,9 +277,21 @@ bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* 
   };
   std::array<Candidate, 8> top{};
   int count = 0;
-  double total = 0.0;
+  auto keep = [&](const Candidate& c) {
+    // The 8 heaviest as the reported contributors (ties: the lower index, whatever the
+    // visiting order, so the index and the scan agree).
+    auto lighter = [](const Candidate& x, const Candidate& y) {
+      return x.weight < y.weight || (x.weight == y.weight && x.index > y.index);
+    };
+    if (count < 8) {
+      top[static_cast<std::size_t>(count++)] = c;
+    } else {
+      auto lightest = std::min_element(top.begin(), top.end(), lighter);
+      if (lighter(*lightest, c)) *lightest = c;
+    }
+  };
+  double total = 0.0, time_sum = 0.0;
   Sh9Rgb sum;
-  double time_sum = 0.0;
   auto visit = [&](std::size_t i) {
     const Probe& q = probes_[i];
     const glm::dvec3 v = q.position - p;
@@ -312,18 +306,7 @@ bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* 
     add_shown(q, static_cast<float>(w), sum);
     total += w;
     time_sum += w * q.data_time;
-    // Keep the 8 heaviest as the reported contributors (ties: the lower index, whatever the
-    // visiting order, so the index and the scan agree).
-    const Candidate c{w, d2, i};
-    auto lighter = [](const Candidate& x, const Candidate& y) {
-      return x.weight < y.weight || (x.weight == y.weight && x.index > y.index);
-    };
-    if (count < 8) {
-      top[static_cast<std::size_t>(count++)] = c;
-    } else {
-      auto lightest = std::min_element(top.begin(), top.end(), lighter);
-      if (lighter(*lightest, c)) *lightest = c;
-    }
+    keep({w, d2, i});
   };
   std::size_t scan_from = 0;
   if (!reference && !kernel_tail_) {
@@ -331,21 +314,56 @@ bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* 
     scan_from = index_.size();
   }
   for (std::size_t i = scan_from; i < probes_.size(); ++i) visit(i);
-  if (total <= 0.0) {
-    double nearest = 0.0;
-    const std::int64_t n = nearest_present(p, reference, &nearest);
-    if (n < 0) return false;
-    // Outside every probe's support: the nearest one, honestly reported as far away.
-    const Probe& q = probes_[static_cast<std::size_t>(n)];
-    out = shown(q);
-    if (meta) {
-      meta->contributors[0] = {q.tag, 1.0f};
-      meta->contributor_count = 1;
-      meta->spacing_m = std::max(static_cast<double>(q.spacing * q.detail), 2.0 * nearest);
-      meta->data_time = q.data_time;
+  const double alpha = kernel_tail_ ? 1.0 : std::min(1.0, total / kBumpConfidence);
+  if (alpha < 1.0) {
+    // The tail, normalised on its own, then mixed in: contributors are reweighted to their
+    // shares of the mix.
+    Sh9Rgb tail_sum;
+    double tail_total = 0.0, tail_time = 0.0;
+    std::array<Candidate, 8> bump_top = top;
+    const int bump_count = count;
+    count = 0;
+    auto tail_of = [&](const Probe& q, double d2) {
+      const double r = support_radius(q);
+      const double u2 = d2 / (r * r);
+      return presence(q) / (1.0 + u2 * u2);
+    };
+    for (const Probe& q : probes_) {
+      if (presence(q) <= 0.0) continue;
+      const glm::dvec3 v = q.position - p;
+      const double t = tail_of(q, glm::dot(v, v));
+      add_shown(q, static_cast<float>(t), tail_sum);
+      tail_total += t;
+      tail_time += t * q.data_time;
     }
-    return true;
+    if (tail_total <= 0.0) return false;                 // no probe is present
+    const double a = total > 0.0 ? alpha / total : 0.0;  // per unit of bump weight
+    const double b = (1.0 - alpha) / tail_total;         // per unit of tail weight
+    Sh9Rgb mixed;
+    for (int k = 0; k < kShCount; ++k) {
+      const auto c = static_cast<std::size_t>(k);
+      mixed.c[c] = sum.c[c] * static_cast<float>(a) + tail_sum.c[c] * static_cast<float>(b);
+    }
+    sum = mixed;
+    time_sum = time_sum * a + tail_time * b;
+    // Each probe's share of the mix: its tail share plus its bump share (bump_top holds the
+    // 8 heaviest bumps; a probe outside them weighs under 1/8 of the bump share).
+    for (std::size_t i = 0; i < probes_.size(); ++i) {
+      const Probe& q = probes_[i];
+      if (presence(q) <= 0.0) continue;
+      const glm::dvec3 v = q.position - p;
+      const double d2 = glm::dot(v, v);
+      double share = b * tail_of(q, d2);
+      for (int k = 0; k < bump_count; ++k) {
+        if (bump_top[static_cast<std::size_t>(k)].index == i) {
+          share += a * bump_top[static_cast<std::size_t>(k)].weight;
+        }
+      }
+      keep({share, d2, i});
+    }
+    total = 1.0;
   }
+  if (total <= 0.0) return false;
   out = sum * static_cast<float>(1.0 / total);
   if (meta) {
     // Heaviest first (insertion sort of at most 8; ties by index for determinism).

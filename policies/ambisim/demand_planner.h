@@ -120,8 +120,6 @@ class DemandPlanner final : public Planner {
   // Interpolated coefficients at p from the current probes; false if none is present. The
   // index finds the probes (the linear scan when `reference`).
   bool interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* meta, bool reference) const;
-  // The present probe nearest to p (-1: none), by the index or the linear scan.
-  std::int64_t nearest_present(const glm::dvec3& p, bool reference, double* distance) const;
   LookupResult lookup_with(const glm::dvec3& p, bool reference) const;
   // Rebuilds the index over every probe (after the set changed).
   void reindex();

@@ -15,6 +15,10 @@
 //                    "window_behind_m" >= 0 [200], "window_ahead_m" >= 0 [800],
 //                    "lane_offset_m" [road_width / 4], "height_m" >= 0 [1],
 //                    "max_live" 0..10000 [500], "size_m" (0, 1e3] [2]}
+//   crowd           absent = none; {"centre": [x, y, z] or a landmark required (x, y used),
+//                    "count" 0..10000 [2000], "radius_m" > 0 [150], "walking_share" 0..1
+//                    [0.5], "speed_mps" 0..10 [1.4], "wander_m" >= 0 [8], "height_m" >= 0
+//                    [1], "size_m" (0, 1e3] [1]}
 //   recorded        absent = none; {"file" required: CSV tracks id,time,x,y,z[,vx,vy,vz]
 //                    relative to the scenario file (recorded_track.h; at most 10000 alive at
 //                    once), "size_m" (0, 1e3] [2]}
@@ -44,6 +48,7 @@ constexpr double kCountSnap = 1e-9;
 // Hash streams, one per spawner, so adding a spawner never changes another's draws.
 constexpr std::uint64_t kLodStream = 0x4C4F4450524F5053ull;
 constexpr std::uint64_t kTrafficStream = 0x5452414646494331ull;
+constexpr std::uint64_t kCrowdStream = 0x43524f5744303031ull;
 
 int kind_index(ReceiverKind k) { return static_cast<int>(k); }
 
@@ -65,6 +70,8 @@ const char* receiver_kind_name(ReceiverKind kind) {
       return "traffic";
     case ReceiverKind::recorded:
       return "recorded";
+    case ReceiverKind::crowd:
+      return "crowd";
   }
   return "?";
 }
@@ -118,6 +125,19 @@ ReceiversRecord parse_receivers(ObjectReader& r) {
     t->finish();
     rec.traffic = tr;
   }
+  if (auto c = r.optional_object("crowd")) {
+    CrowdRecord cr;
+    cr.centre = read_position(*c, "centre", 1e10, cr.centre_landmark, 0);
+    cr.count = c->integer("count", cr.count, Range::closed(0, kMaxLive));
+    cr.radius_m = c->number("radius_m", cr.radius_m, Range::positive());
+    cr.walking_share = c->number("walking_share", cr.walking_share, Range::closed(0.0, 1.0));
+    cr.speed_mps = c->number("speed_mps", cr.speed_mps, Range::closed(0.0, 10.0));
+    cr.wander_m = c->number("wander_m", cr.wander_m, Range::non_negative());
+    cr.height_m = c->number("height_m", cr.height_m, Range::non_negative());
+    cr.size_m = c->number("size_m", cr.size_m, kSize);
+    c->finish();
+    rec.crowd = cr;
+  }
   if (auto c = r.optional_object("recorded")) {
     RecordedReceiversRecord rr;
     rr.tracks = read_recorded_receivers(*c, "file", kMaxLive);
@@ -131,6 +151,12 @@ ReceiversRecord parse_receivers(ObjectReader& r) {
 
 void resolve_receiver_landmarks(ReceiversRecord& record, const WorldLandmarks& landmarks,
                                 const std::string& file) {
+  if (record.crowd) {
+    for (const auto& ref : record.crowd->centre_landmark) {
+      record.crowd->centre = resolve_landmark(ref, landmarks, file);
+    }
+    record.crowd->centre_landmark.clear();
+  }
   if (!record.lod_props) return;
   for (const auto& ref : record.lod_props->trigger_landmark) {
     record.lod_props->trigger = resolve_landmark(ref, landmarks, file);
@@ -140,7 +166,7 @@ void resolve_receiver_landmarks(ReceiversRecord& record, const WorldLandmarks& l
 
 ReceiverSet::ReceiverSet(const ReceiversRecord& record, const TerrainQueries& terrain)
     : rec_(record), terrain_(terrain) {
-  if ((rec_.camera_object.enabled || rec_.lod_props) && !terrain_.ground_height) {
+  if ((rec_.camera_object.enabled || rec_.lod_props || rec_.crowd) && !terrain_.ground_height) {
     throw std::invalid_argument("receivers need ground height");
   }
   if (rec_.traffic) {
@@ -188,6 +214,7 @@ void ReceiverSet::update(double time, const CameraState& camera) {
   if (rec_.lod_props) update_lod_props(time, camera);
   if (rec_.traffic) update_traffic(time, camera);
   if (rec_.recorded) update_recorded(time);
+  if (rec_.crowd) update_crowd(time);
   last_time_ = time;
 }
 
@@ -360,6 +387,42 @@ void ReceiverSet::update_recorded(double time) {
     const RecordedTrack::State s = track.at(time);
     r.position = s.position;
     r.velocity = s.velocity;
+  }
+}
+
+void ReceiverSet::update_crowd(double time) {
+  const CrowdRecord& C = *rec_.crowd;
+  constexpr double kTwoPi = 6.28318530717958647692;
+  // Member i: home uniform in the disc (u0, u1), walking if u2 < walking_share, loop phases
+  // (u3, u4) and frequencies from u5: x = A sin(w t + a), y = A sin(1.6 w t + b), whose speed
+  // averages about speed_mps when A w = speed_mps / 1.4.
+  auto place = [&](Receiver& r, std::int64_t i) {
+    const double radius = C.radius_m * std::sqrt(uniform(kCrowdStream, i, 0));
+    const double angle = kTwoPi * uniform(kCrowdStream, i, 1);
+    glm::dvec3 p(C.centre.x + radius * std::cos(angle), C.centre.y + radius * std::sin(angle), 0.0);
+    glm::dvec3 v(0.0);
+    const bool walking = uniform(kCrowdStream, i, 2) < C.walking_share;
+    if (walking && C.wander_m > 0.0 && C.speed_mps > 0.0) {
+      const double w = C.speed_mps / (1.4 * C.wander_m) * (0.8 + 0.4 * uniform(kCrowdStream, i, 5));
+      const double a = kTwoPi * uniform(kCrowdStream, i, 3),
+                   b = kTwoPi * uniform(kCrowdStream, i, 4);
+      const double t = time - start_time_;
+      p.x += C.wander_m * std::sin(w * t + a);
+      p.y += C.wander_m * std::sin(1.6 * w * t + b);
+      v = {C.wander_m * w * std::cos(w * t + a), 1.6 * C.wander_m * w * std::cos(1.6 * w * t + b),
+           0.0};
+    }
+    const double h = walking ? C.height_m : 0.5 + uniform(kCrowdStream, i, 6);
+    p.z = stand_height(p.x, p.y) + h;
+    r.position = p;
+    r.velocity = v;  // horizontal: the slope's share is below a walker's notice
+    r.size_m = C.size_m;
+  };
+  if (counters_.spawned[kind_index(ReceiverKind::crowd)] == 0) {
+    for (int i = 0; i < C.count; ++i) spawn(ReceiverKind::crowd, time);
+  }
+  for (auto& r : live_) {
+    if (r.kind == ReceiverKind::crowd) place(r, r.kind_order);
   }
 }
 

@@ -23,8 +23,8 @@
 
 namespace ambisim {
 
-enum class ReceiverKind { camera_object, lod_prop, traffic, recorded };
-inline constexpr int kReceiverKinds = 4;
+enum class ReceiverKind { camera_object, lod_prop, traffic, recorded, crowd };
+inline constexpr int kReceiverKinds = 5;
 const char* receiver_kind_name(ReceiverKind kind);
 
 struct Receiver {
@@ -86,6 +86,22 @@ struct TrafficRecord {
   double size_m = 2.0;  // as seen by the player (a car)
 };
 
+// A game's load: a crowd on the fields (a festival): `count` props and people, all present
+// from the first frame, standing in a disc around `centre`; `walking_share` of them are people
+// milling at walking speed, each on its own closed loop around its home (a Lissajous figure
+// of `wander_m` amplitude, so speeds vary smoothly around speed_mps), the rest stand still.
+struct CrowdRecord {
+  glm::dvec3 centre{0.0};                    // only x, y are used
+  std::vector<LandmarkRef> centre_landmark;  // the centre given as a landmark (at most one)
+  int count = 2000;
+  double radius_m = 150.0;
+  double walking_share = 0.5;
+  double speed_mps = 1.4;
+  double wander_m = 8.0;
+  double height_m = 1.0;  // of a person's centre above the surface; props 0.5-1.5
+  double size_m = 1.0;    // as seen by the player
+};
+
 struct RecordedReceiversRecord {
   std::shared_ptr<const RecordedReceivers> tracks;  // read from the CSV file
   double size_m = 2.0;                              // as seen by the player, every receiver
@@ -97,6 +113,7 @@ struct ReceiversRecord {
   std::optional<LodPropsRecord> lod_props;
   std::optional<TrafficRecord> traffic;
   std::optional<RecordedReceiversRecord> recorded;
+  std::optional<CrowdRecord> crowd;
 };
 
 // Reads a "receivers" object (schema in receivers.cpp); calls finish().
@@ -137,6 +154,7 @@ class ReceiverSet {
   void update_lod_props(double time, const CameraState& camera);
   void update_traffic(double time, const CameraState& camera);
   void update_recorded(double time);
+  void update_crowd(double time);
   Receiver& spawn(ReceiverKind kind, double time);
   std::int64_t live_count(ReceiverKind kind) const;
   double uniform(std::uint64_t stream, std::int64_t index, int component) const;

@@ -257,3 +257,62 @@ TEST_CASE("receivers JSON errors name the path", "[receivers]") {
       "band_far_m": 10}})"),
                     Catch::Contains("band_far_m"));
 }
+
+TEST_CASE("a crowd stands in its disc, and its walkers mill at walking speed", "[receivers]") {
+  ReceiversRecord rec;
+  rec.camera_object.enabled = false;
+  CrowdRecord c;
+  c.centre = {100.0, -50.0, 0.0};
+  c.count = 2000;
+  c.radius_m = 110.0;
+  rec.crowd = c;
+  ReceiverSet set(rec, sloped());
+  const CameraPath path = flight(0.0);
+  // Displacement over one frame gives the speed (compared with the reported velocity).
+  std::map<std::uint64_t, glm::dvec3> before;
+  double speed_sum = 0.0, moving = 0.0, still = 0.0, worst_velocity_error = 0.0;
+  const double dt = 1.0 / 60.0;
+  for (int k = 0; k <= 600; ++k) {
+    const double t = k * dt;
+    set.update(t, path.state(t, t > 0 ? t - dt : 0.0));
+    REQUIRE(set.live().size() == 2000);
+    for (const Receiver& r : set.live()) {
+      REQUIRE(r.kind == ReceiverKind::crowd);
+      // On the ground (sloped: z = 0.1 x), people 1 m up, props 0.5-1.5 m.
+      const double above = r.position.z - 0.1 * r.position.x;
+      CHECK(above >= 0.5 - 1e-9);
+      CHECK(above <= 1.5 + 1e-9);
+      // Home in the disc, wandering at most wander_m (8 m) per axis from it.
+      CHECK(glm::length(glm::dvec2(r.position.x - 100.0, r.position.y + 50.0)) <=
+            110.0 + 8.0 * std::sqrt(2.0) + 1e-9);
+      if (k > 0) {
+        const glm::dvec3 step = r.position - before[r.id];
+        const double v = glm::length(glm::dvec2(step.x, step.y)) / dt;
+        if (glm::length(r.velocity) > 0.0) {
+          speed_sum += v;
+          moving += 1.0;
+          worst_velocity_error =
+              std::max(worst_velocity_error, glm::length(glm::dvec2(step.x, step.y) / dt -
+                                                         glm::dvec2(r.velocity.x, r.velocity.y)));
+        } else {
+          CHECK(v == 0.0);
+          still += 1.0;
+        }
+      }
+      before[r.id] = r.position;
+    }
+  }
+  // Half walk (walking_share 0.5, 2000 draws: within 4 standard deviations).
+  CHECK(moving / (moving + still) == Approx(0.5).margin(0.045));
+  // Mean walking speed near 1.4 m/s (the loops' speeds vary around it).
+  CHECK(speed_sum / moving == Approx(1.4).epsilon(0.25));
+  // The reported velocity is the derivative of the motion (one frame of curvature apart).
+  CHECK(worst_velocity_error < 0.05);
+  CHECK(spawned(set, ReceiverKind::crowd) == 2000);
+  // Deterministic: another set from the same record is identical.
+  ReceiverSet again(rec, sloped());
+  again.update(0.0, path.state(0.0, 0.0));
+  ReceiverSet first(rec, sloped());
+  first.update(0.0, path.state(0.0, 0.0));
+  CHECK(again.live()[1234].position == first.live()[1234].position);
+}
