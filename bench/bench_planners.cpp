@@ -376,6 +376,12 @@ void BM_Lookup(benchmark::State& state, const std::string& planner, bool naive) 
   report_stats(state, p, n, f.fill_s);
   state.counters["fell_back"] = static_cast<double>(fell_back) /
                                 static_cast<double>(std::max<std::int64_t>(1, state.iterations()));
+  if (const auto* a = dynamic_cast<const DemandPlanner*>(&p)) {
+    // ambisim's profile: the share of the points whose lookup takes the tail's linear scan.
+    int tail = 0;
+    for (const auto& q : f.points) tail += a->lookup_uses_tail(q) ? 1 : 0;
+    state.counters["tail_share"] = static_cast<double>(tail) / static_cast<double>(f.points.size());
+  }
   state.SetLabel(setup_for(planner, n).label);
   set_naive(p, false);
 }

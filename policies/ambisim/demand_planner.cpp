@@ -409,6 +409,21 @@ LookupResult DemandPlanner::lookup_with(const glm::dvec3& p, bool reference) con
 
 LookupResult DemandPlanner::lookup(const glm::dvec3& p) const { return lookup_with(p, false); }
 
+bool DemandPlanner::lookup_uses_tail(const glm::dvec3& p) const {
+  if (kernel_tail_) return true;
+  double total = 0.0;
+  auto visit = [&](std::size_t i) {
+    const Probe& q = probes_[i];
+    const glm::dvec3 v = q.position - p;
+    const double d2 = glm::dot(v, v);
+    const double r = support_radius(q);
+    if (d2 < r * r) total += kernel(q, d2) * presence(q);
+  };
+  index_.for_each_candidate(p, visit);
+  for (std::size_t i = index_.size(); i < probes_.size(); ++i) visit(i);
+  return total < kBumpConfidence;
+}
+
 LookupResult DemandPlanner::lookup_reference(const glm::dvec3& p) const {
   return lookup_with(p, true);
 }
@@ -428,7 +443,6 @@ void DemandPlanner::reindex() {
     radii[i] = support_radius(probes_[i]);
   }
   index_.build(positions, radii);
-  index_stale_ = false;
 }
 
 double DemandPlanner::nearest_distance(const glm::dvec3& c, double* detail) const {
@@ -743,20 +757,26 @@ void DemandPlanner::update(const FrameContext& ctx) {
     far->fade_out_start = now_;
     --staying;
   }
-  const std::size_t before = probes_.size();
-  probes_.erase(std::remove_if(probes_.begin(), probes_.end(),
-                               [&](Probe& q) {
-                                 const bool gone =
-                                     q.fade_out_start >= 0.0 && now_ - q.fade_out_start >= fade_s_;
-                                 if (gone) {
-                                   pool_.release(q.from);
-                                   pool_.release(q.lamps);
-                                 }
-                                 return gone;
-                               }),
-                probes_.end());
-  // The index addresses probes by position in probes_: rebuild it when any left or arrived.
-  if (probes_.size() != before || index_.size() != probes_.size()) reindex();
+  // Probes that have faded out weigh nothing anywhere; they are dropped from probes_ (and the
+  // index rebuilt, as it addresses probes by position) once more than kUnindexedTail of them
+  // wait, so that a frame in which one leaves does not pay for a rebuild.
+  std::size_t dead = 0;
+  for (auto& q : probes_) {
+    if (!gone(q)) continue;
+    pool_.release(q.from);
+    pool_.release(q.lamps);
+    ++dead;
+  }
+  if (dead > kUnindexedTail) {
+    probes_.erase(
+        std::remove_if(probes_.begin(), probes_.end(), [&](const Probe& q) { return gone(q); }),
+        probes_.end());
+    reindex();
+  }
+}
+
+bool DemandPlanner::gone(const Probe& q) const {
+  return q.fade_out_start >= 0.0 && now_ - q.fade_out_start >= fade_s_;
 }
 
 void DemandPlanner::set_receivers(const std::vector<ReceiverView>& receivers) {
@@ -765,7 +785,8 @@ void DemandPlanner::set_receivers(const std::vector<ReceiverView>& receivers) {
 
 PlannerStats DemandPlanner::stats() const {
   PlannerStats s;
-  s.live_probes = static_cast<std::int64_t>(probes_.size());
+  s.live_probes = static_cast<std::int64_t>(
+      std::count_if(probes_.begin(), probes_.end(), [&](const Probe& q) { return !gone(q); }));
   // What is held, as held: the probes (their sets as 32-bit floats whatever the format: the
   // format rounds values, the layout stays), the pool of fading and lamp sets, the index, the
   // pending captures (std::map nodes: about 4 pointers of overhead each) and the receivers.
@@ -780,6 +801,7 @@ PlannerStats DemandPlanner::stats() const {
 
 void DemandPlanner::describe_nodes(std::vector<ProbeNodeView>& out) const {
   for (const auto& q : probes_) {
+    if (gone(q)) continue;
     ProbeNodeView v;
     v.centre = q.position;
     v.half_extent = glm::dvec3(0.5 * static_cast<double>(q.spacing * q.detail));

@@ -59,6 +59,9 @@ class DemandPlanner final : public Planner {
   // The same lookup by a linear scan over every probe, without the index: the reference the
   // index is tested against (equal to 1e-6) and the naive path of the benchmarks.
   LookupResult lookup_reference(const glm::dvec3& p) const;
+  // Whether a lookup at p mixes in the tail (its bumps weigh under kBumpConfidence): the slow
+  // path, a linear scan over every probe. For the benchmarks' profile.
+  bool lookup_uses_tail(const glm::dvec3& p) const;
   void set_receivers(const std::vector<ReceiverView>& receivers) override;
   void describe_nodes(std::vector<ProbeNodeView>& out) const override;
 
@@ -121,6 +124,8 @@ class DemandPlanner final : public Planner {
   // index finds the probes (the linear scan when `reference`).
   bool interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* meta, bool reference) const;
   LookupResult lookup_with(const glm::dvec3& p, bool reference) const;
+  // Faded out: weighs nothing, waits to be dropped from probes_.
+  bool gone(const Probe& q) const;
   // Rebuilds the index over every probe (after the set changed).
   void reindex();
   // Distance from c to the nearest probe or pending capture, and the local detail factor.
@@ -175,8 +180,7 @@ class DemandPlanner final : public Planner {
   std::uint64_t next_tag_ = 1;
   std::vector<Probe> probes_;  // in delivery order
   SetPool pool_;
-  ProbeIndex index_;          // over probes_[0, index_.size()); later ones are scanned
-  bool index_stale_ = false;  // probes left since the last rebuild
+  ProbeIndex index_;  // over probes_[0, index_.size()); later ones are scanned
   std::map<std::uint64_t, Pending> planned_;  // returned by plan(), not yet started
   std::map<std::uint64_t, Pending> in_flight_;
 };

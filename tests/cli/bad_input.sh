@@ -117,6 +117,10 @@ mutate huge_budget 'd["budget"]["faces_per_frame"] = 1e9'
 mutate huge_reference_face 'd["reference"]["face_size"] = 1000000'
 mutate huge_traffic_rate 'd["receivers"]["traffic"]["rate_per_s"] = 1e9'
 mutate huge_max_live 'd["receivers"]["traffic"]["max_live"] = 1000000000'
+mutate crowd_unknown_key 'd["receivers"]["crowd"] = {"centre": [0, 0, 0], "cout": 20}'
+mutate crowd_huge 'd["receivers"]["crowd"] = {"centre": [0, 0, 0], "count": 20000}'
+mutate crowd_no_centre 'd["receivers"]["crowd"] = {"count": 20}'
+mutate sample_stride_zero 'd["reference"]["sample_stride"] = 0'
 mutate negative_seed 'd["receivers"]["seed"] = -5'
 mutate same_points 'd["camera"] = {"points": [[10, 10, 50], [10, 10, 50]], "speed_mps": 5}'
 mutate huge_point 'd["camera"] = {"points": [[-1e300, 10, 50], [1e300, 10, 50]], "speed_mps": 5}'
@@ -240,6 +244,10 @@ run_error huge_budget "/budget/faces_per_frame: must be <= 96"
 run_error huge_reference_face "/reference/face_size: must be <= 256"
 run_error huge_traffic_rate "/receivers/traffic/rate_per_s: must be <= 10000"
 run_error huge_max_live "/receivers/traffic/max_live: must be <= 10000"
+run_error crowd_unknown_key "/receivers/crowd/cout: unknown key"
+run_error crowd_huge "/receivers/crowd/count: must be <= 10000"
+run_error crowd_no_centre "/receivers/crowd/centre"
+run_error sample_stride_zero "/reference/sample_stride: must be >= 1"
 run_error negative_seed "/receivers/seed: must be a non-negative integer, got -5"
 run_error same_points "/camera/points: needs at least 2 distinct points"
 run_error huge_point "/camera/points/0/0: must be in [-1e10, 1e10] m"
