@@ -172,9 +172,11 @@ class RunMetrics {
   // camera_cut: the camera teleported this frame; no receiver can pop across it.
   void begin_frame(std::int64_t frame, double time, double dt, bool camera_cut = false);
   // Throws std::invalid_argument unless both spans hold one value per normal. A receiver given
-  // no view weighs 0 in the viewed metrics.
-  void receiver(std::uint64_t id, std::span<const Rgb> planner_e, std::span<const Rgb> reference_e,
-                const LookupResult& lookup, const ReceiverViewing& view = {});
+  // no view weighs 0 in the viewed metrics. Returns the receiver's pop evaluation (for tools
+  // that show where the pops were, e.g. `ambisim film`; scoring does not need it).
+  PopEvaluation receiver(std::uint64_t id, std::span<const Rgb> planner_e,
+                         std::span<const Rgb> reference_e, const LookupResult& lookup,
+                         const ReceiverViewing& view = {});
   void demand_point(const LookupResult& lookup, double distance_to_camera_m, DemandKind kind);
   void costs(const FrameCosts& c);
   // The preload's cost, once, before or in the first frame.

@@ -364,6 +364,8 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
     result.timing.lookup_s += seconds_since(tl);
     result.timing.lookups += static_cast<std::int64_t>(receiver_count + demand.size());
     const CameraView view(motion.view(), mf.camera.position, mf.look);
+    const bool observe = options.on_frame && reference != nullptr;
+    FrameObservation observed;
     for (std::size_t k = 0; k < receiver_count; ++k) {
       const Receiver& r = motion.receivers()[k];
       const LookupResult& lr = receiver_lookups[k];
@@ -371,9 +373,17 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
         for (std::size_t m = 0; m < nn; ++m) {
           planner_e[m] = sh_irradiance(lr.sh, settings.normals[m]);
         }
-        metrics.receiver(r.id, planner_e,
-                         std::span<const Rgb>(reference->values(span.begin + k), nn), lr,
-                         receiver_viewing(view, r));
+        const ReceiverViewing viewing = receiver_viewing(view, r);
+        const PopEvaluation ev = metrics.receiver(
+            r.id, planner_e, std::span<const Rgb>(reference->values(span.begin + k), nn), lr,
+            viewing);
+        if (observe) {
+          const std::size_t slot = span.begin + k;
+          observed.receivers.push_back(
+              {r.id, r.position, r.size_m, lr.sh,
+               slot < reference->sh.size() ? reference->sh[slot] : Sh9Rgb{}, viewing.weight,
+               ev.viewed_pop && viewing.weight > 0.0});
+        }
       }
       metrics.demand_point(lr, glm::length(r.position - mf.camera.position), DemandKind::receiver);
     }
@@ -404,6 +414,16 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
       result.snapshots.push_back(std::move(snap));
     }
     FrameRow row = metrics.end_frame();
+    if (observe) {
+      observed.frame = mf.frame.index;
+      observed.time = mf.frame.time;
+      observed.camera = mf.camera.position;
+      observed.look = mf.look;
+      observed.camera_cut = mf.camera.cut;
+      observed.view = motion.view();
+      observed.row = row;
+      options.on_frame(observed);
+    }
     if (options.keep_frames) result.frames.push_back(row);
     ++frame_index;
   }
