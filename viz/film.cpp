@@ -44,7 +44,8 @@ constexpr double kPi = 3.14159265358979323846;
 // along each side (the grid the GPU draws every panel and frame).
 constexpr double kTerrainMarginM = 1500.0;
 constexpr int kTerrainPoints = 480;
-constexpr int kTileQuads = 24;
+constexpr int kTileQuads = 60;
+constexpr double kFullDetailM = 400.0;
 constexpr double kNearClipM = 0.3;
 constexpr double kFarClipM = 4000.0;
 
@@ -237,8 +238,13 @@ struct FilmRenderer::Impl {
   std::vector<vtkSmartPointer<vtkRenderer>> renderers;
   std::vector<vtkSmartPointer<vtkPolyData>> sphere_data;
   std::vector<vtkSmartPointer<vtkTextActor>> captions;
-  std::vector<glm::dvec3> unit_sphere;  // template vertices (= normals)
-  std::vector<std::array<vtkIdType, 3>> unit_triangles;
+  // Unit spheres, fine to coarse (vertices = normals): a sphere a few pixels across needs
+  // far fewer triangles than one filling the view.
+  struct UnitSphere {
+    std::vector<glm::dvec3> vertices;
+    std::vector<std::array<vtkIdType, 3>> triangles;
+  };
+  std::array<UnitSphere, 3> unit_spheres;
   double vfov = 40.0;
 };
 
@@ -283,26 +289,45 @@ FilmRenderer::FilmRenderer(const World& world, const FilmSettings& settings, int
     }
   }
   // Tiles of kTileQuads x kTileQuads quads, one actor each, so that the renderers' frustum
-  // culling skips the tiles out of view (most of them: llvmpipe's cost is in the triangles).
+  // culling skips the tiles out of view; tiles far from the camera's path keep every 2nd or
+  // 4th sample (llvmpipe's cost is in the triangles; there they are a pixel or less).
+  const auto path_distance = [&](double x0, double y0, double x1, double y1) {
+    double best = 1e300;
+    for (std::size_t k = 0; k < settings.camera_positions.size(); k += 10) {
+      const glm::dvec3& p = settings.camera_positions[k];
+      const double dx = std::max({x0 - p.x, 0.0, p.x - x1});
+      const double dy = std::max({y0 - p.y, 0.0, p.y - y1});
+      best = std::min(best, std::hypot(dx, dy));
+    }
+    return best;
+  };
   std::vector<vtkSmartPointer<vtkPolyDataMapper>> tile_mappers;
   for (int j0 = 0; j0 + 1 < ny; j0 += kTileQuads) {
     for (int i0 = 0; i0 + 1 < nx; i0 += kTileQuads) {
       const int i1 = std::min(nx - 1, i0 + kTileQuads), j1 = std::min(ny - 1, j0 + kTileQuads);
+      const double d =
+          path_distance(lo.x + i0 * step, lo.y + j0 * step, lo.x + i1 * step, lo.y + j1 * step);
+      const int stride = d < kFullDetailM ? 1 : (d < 2.0 * kFullDetailM ? 2 : 4);
+      std::vector<int> is, js;
+      for (int i = i0; i < i1; i += stride) is.push_back(i);
+      is.push_back(i1);
+      for (int j = j0; j < j1; j += stride) js.push_back(j);
+      js.push_back(j1);
       vtkNew<vtkPoints> tp;
       vtkNew<vtkUnsignedCharArray> tc;
       tc->SetNumberOfComponents(3);
-      for (int j = j0; j <= j1; ++j) {
-        for (int i = i0; i <= i1; ++i) {
+      for (int j : js) {
+        for (int i : is) {
           const vtkIdType k = static_cast<vtkIdType>(j) * nx + i;
           tp->InsertNextPoint(points->GetPoint(k));
           tc->InsertNextTypedTuple(colours->GetPointer(3 * k));
         }
       }
-      const int w = i1 - i0 + 1;
+      const auto w = static_cast<vtkIdType>(is.size());
       vtkNew<vtkCellArray> tris;
-      for (int j = 0; j + j0 < j1; ++j) {
-        for (int i = 0; i + i0 < i1; ++i) {
-          const vtkIdType a = static_cast<vtkIdType>(j) * w + i;
+      for (vtkIdType j = 0; j + 1 < static_cast<vtkIdType>(js.size()); ++j) {
+        for (vtkIdType i = 0; i + 1 < w; ++i) {
+          const vtkIdType a = j * w + i;
           const vtkIdType t1[3] = {a, a + 1, a + 1 + w};
           const vtkIdType t2[3] = {a, a + 1 + w, a + w};
           tris->InsertNextCell(3, t1);
@@ -329,23 +354,27 @@ FilmRenderer::FilmRenderer(const World& world, const FilmSettings& settings, int
   const auto zenith = displayed(il.sky(mid, glm::dvec3(0.0, 0.0, 1.0)) * static_cast<float>(kPi),
                                 settings.exposure);
 
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetThetaResolution(24);
-  sphere->SetPhiResolution(16);
-  sphere->SetRadius(1.0);
-  sphere->Update();
-  vtkPolyData* sp = sphere->GetOutput();
-  for (vtkIdType k = 0; k < sp->GetNumberOfPoints(); ++k) {
-    double p[3];
-    sp->GetPoint(k, p);
-    m.unit_sphere.push_back(glm::normalize(glm::dvec3(p[0], p[1], p[2])));
-  }
-  vtkCellArray* polys = sp->GetPolys();
-  polys->InitTraversal();
-  vtkIdType n = 0;
-  const vtkIdType* ids = nullptr;
-  while (polys->GetNextCell(n, ids) != 0) {
-    if (n == 3) m.unit_triangles.push_back({ids[0], ids[1], ids[2]});
+  const std::array<std::array<int, 2>, 3> resolutions = {{{32, 20}, {16, 10}, {8, 6}}};
+  for (std::size_t level = 0; level < resolutions.size(); ++level) {
+    vtkNew<vtkSphereSource> sphere;
+    sphere->SetThetaResolution(resolutions[level][0]);
+    sphere->SetPhiResolution(resolutions[level][1]);
+    sphere->SetRadius(1.0);
+    sphere->Update();
+    vtkPolyData* sp = sphere->GetOutput();
+    Impl::UnitSphere& u = m.unit_spheres[level];
+    for (vtkIdType k = 0; k < sp->GetNumberOfPoints(); ++k) {
+      double p[3];
+      sp->GetPoint(k, p);
+      u.vertices.push_back(glm::normalize(glm::dvec3(p[0], p[1], p[2])));
+    }
+    vtkCellArray* polys = sp->GetPolys();
+    polys->InitTraversal();
+    vtkIdType n = 0;
+    const vtkIdType* ids = nullptr;
+    while (polys->GetNextCell(n, ids) != 0) {
+      if (n == 3) u.triangles.push_back({ids[0], ids[1], ids[2]});
+    }
   }
 
   m.window->SetOffScreenRendering(1);
@@ -417,14 +446,18 @@ ImageRgb8 FilmRenderer::render(const FilmFrame& frame) {
       const glm::dvec3 v = s.centre - frame.camera;
       // Wholly behind the camera or beyond the far plane: not drawn.
       if (glm::dot(v, f) < -s.radius_m || glm::length(v) > kFarClipM + s.radius_m) continue;
+      const double z = std::max(glm::dot(v, f), kNearClipM);
+      const double radius_px =
+          s.radius_m / z / std::tan(m.vfov * kPi / 360.0) * 0.5 * m.s.panel_height;
+      const Impl::UnitSphere& u = m.unit_spheres[radius_px > 24.0 ? 0 : (radius_px > 6.0 ? 1 : 2)];
       const vtkIdType first = points->GetNumberOfPoints();
-      for (const auto& n : m.unit_sphere) {
+      for (const auto& n : u.vertices) {
         const glm::dvec3 p = s.centre + s.radius_m * n;
         points->InsertNextPoint(p.x, p.y, p.z);
         const auto c = displayed(sh_irradiance(s.sh, n), m.s.exposure);
         colours->InsertNextTypedTuple(c.data());
       }
-      for (const auto& t : m.unit_triangles) {
+      for (const auto& t : u.triangles) {
         const vtkIdType ids[3] = {first + t[0], first + t[1], first + t[2]};
         tris->InsertNextCell(3, ids);
       }
