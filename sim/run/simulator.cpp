@@ -8,6 +8,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "sim/colour/ciede2000.h"
+#include "sim/colour/tone_map.h"
 #include "sim/metrics/coverage.h"
 #include "sim/metrics/view_weights.h"
 #include "sim/render/capture.h"
@@ -366,6 +368,11 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
     const CameraView view(motion.view(), mf.camera.position, mf.look);
     const bool observe = options.on_frame && reference != nullptr;
     FrameObservation observed;
+    const bool snapshot_now =
+        snapshot_every > 0.0 &&
+        (result.snapshots.empty() ||
+         mf.frame.time >= result.snapshots.back().time + snapshot_every - 1e-9);
+    std::vector<Snapshot::ReceiverLight> snapshot_light;
     for (std::size_t k = 0; k < receiver_count; ++k) {
       const Receiver& r = motion.receivers()[k];
       const LookupResult& lr = receiver_lookups[k];
@@ -377,6 +384,20 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
         const PopEvaluation ev = metrics.receiver(
             r.id, planner_e, std::span<const Rgb>(reference->values(span.begin + k), nn), lr,
             viewing);
+        if (snapshot_now) {
+          const std::size_t slot = span.begin + k;
+          const Sh9Rgb ref_sh = slot < reference->sh.size() ? reference->sh[slot] : Sh9Rgb{};
+          const glm::dvec3 up(0.0, 0.0, 1.0);
+          Snapshot::ReceiverLight l;
+          l.planner_up = sh_irradiance(lr.sh, up);
+          l.reference_up = sh_irradiance(ref_sh, up);
+          l.planner_view = sh_irradiance(lr.sh, viewing.to_camera);
+          l.reference_view = sh_irradiance(ref_sh, viewing.to_camera);
+          l.de2000_view = ciede2000(display_lab(l.planner_view, settings.exposure),
+                                    display_lab(l.reference_view, settings.exposure));
+          l.viewed_pop = ev.viewed_pop && viewing.weight > 0.0;
+          snapshot_light.push_back(l);
+        }
         if (observe) {
           const std::size_t slot = span.begin + k;
           observed.receivers.push_back(
@@ -402,15 +423,14 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
     result.timing.planner_s += seconds_since(t0);
 
     if (options.keep_frames) result.camera_path.push_back(mf.camera.position);
-    if (snapshot_every > 0.0 &&
-        (result.snapshots.empty() ||
-         mf.frame.time >= result.snapshots.back().time + snapshot_every - 1e-9)) {
+    if (snapshot_now) {
       Snapshot snap;
       snap.frame = mf.frame.index;
       snap.time = mf.frame.time;
       snap.camera = mf.camera.position;
       planner.describe_nodes(snap.nodes);
       for (const auto& r : motion.receivers()) snap.receivers.push_back(r.position);
+      snap.light = std::move(snapshot_light);
       result.snapshots.push_back(std::move(snap));
     }
     FrameRow row = metrics.end_frame();

@@ -55,6 +55,15 @@ struct Snapshot {
   glm::dvec3 camera{0.0};
   std::vector<ProbeNodeView> nodes;
   std::vector<glm::dvec3> receivers;
+  // Per receiver (same order; empty without a reference): the planner's and the reference's
+  // irradiance (the reference capture in SH9) straight up and toward the camera, the displayed
+  // CIEDE2000 between the two toward the camera, and whether it popped where seen this frame.
+  struct ReceiverLight {
+    Rgb planner_up, reference_up, planner_view, reference_view;
+    double de2000_view = 0.0;
+    bool viewed_pop = false;
+  };
+  std::vector<ReceiverLight> light;
 };
 
 struct RunResult {
