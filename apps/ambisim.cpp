@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   ambisim::cli::add_compare_command(app);
   ambisim::cli::add_plot_command(app);
   ambisim::cli::add_viz_command(app);
+  ambisim::cli::add_film_command(app);
   ambisim::cli::add_bench_chart_command(app);
   try {
     app.parse(argc, argv);

@@ -14,5 +14,6 @@ void add_plot_command(CLI::App& app);
 void add_viz_command(CLI::App& app);
 void add_bench_chart_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
+void add_film_command(CLI::App& app);
 
 }  // namespace ambisim::cli

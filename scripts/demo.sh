@@ -9,6 +9,9 @@
 #   sweep/charts/                 accuracy vs cost, error and pops vs speed, coverage vs
 #                                 budget, box plots across seeds, time series
 #   sweep/runs/<run>/views/       ParaView files and PNG snapshots of two motorway runs
+#   film/forest_edge.mp4          the forest edge as the player sees it: ambisim | shgraph+vp |
+#                                 truth (20 s, 640x360 panels, 30 fps), with
+#                                 forest_edge_contact.png (a frame every 2 s) and a still
 # Rerunning resumes the sweep (finished runs are kept) and redraws the pictures.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
@@ -37,4 +40,12 @@ echo "== views" >&2
 for r in motorway__ambisim__b1__v1__s1 motorway__shgraph+vp__b1__v1__s1 forest_edge__ambisim__b1__v1__s1; do
   run "$AMBISIM" viz "$OUT/sweep/runs/$r" --force
 done
+echo "== film" >&2
+mkdir -p "$OUT/film"
+runs="$OUT/sweep/runs"
+run "$AMBISIM" film "$runs/forest_edge__ambisim__b1__v1__s1" "$runs/forest_edge__shgraph+vp__b1__v1__s1" \
+  --out "$OUT/film/forest_edge.mp4" --force
+# A still at 16 s (film frame 480), where the props stand in view.
+ffmpeg -hide_banner -loglevel error -y -i "$OUT/film/forest_edge.mp4" -vf "select=eq(n\,480)" \
+  -frames:v 1 "$OUT/film/forest_edge_still.png"
 echo "ambisim demo: outputs in $OUT (charts in $OUT/sweep/charts)" >&2

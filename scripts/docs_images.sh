@@ -20,6 +20,8 @@ copy "$sweep/charts/motorway__ambisim__b1__v1__s1_series.png" motorway_ambisim_s
 copy "$sweep/runs/motorway__ambisim__b1__v1__s1/views/snapshot_f000600.png" snapshot_motorway_ambisim.png
 copy "$sweep/runs/motorway__shgraph+vp__b1__v1__s1/views/snapshot_f000600.png" snapshot_motorway_shgraph_vp.png
 copy "$sweep/runs/forest_edge__ambisim__b1__v1__s1/views/snapshot_f000600.png" snapshot_forest_edge_ambisim.png
+copy "$demo/film/forest_edge_still.png" film_forest_edge_still.png
+copy "$demo/film/forest_edge_contact.png" film_forest_edge_contact.png
 if [ $# -ge 2 ]; then
   for sc in sunset_drive day_cycle cloud_shadows fog_bank; do
     copy "$2/charts/${sc}_light.png" "${sc}_light.png"

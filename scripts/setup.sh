@@ -8,7 +8,8 @@ AMBISIM_BUILD="${AMBISIM_BUILD:-$AMBISIM_ROOT/build}"
 
 # What each package is for is listed in the README ("Dependencies").
 AMBISIM_PACKAGES=(cmake g++ ninja-build pkg-config libglm-dev libeigen3-dev nlohmann-json3-dev
-  libpng-dev catch2 libcli11-dev libbenchmark-dev libvtk9-dev xvfb xauth python3 clang-format)
+  libpng-dev catch2 libcli11-dev libbenchmark-dev libvtk9-dev xvfb xauth python3 clang-format
+  ffmpeg)
 # Only for tests/cli/slurm.sh (a one-node Slurm cluster on localhost); installed by test.sh and
 # by that test itself, not by demo.sh.
 AMBISIM_SLURM_PACKAGES=(slurm-wlm munge)

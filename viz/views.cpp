@@ -193,11 +193,46 @@ vtkSmartPointer<vtkUnstructuredGrid> cells_grid(const ViewSnapshot& s, double ex
   return grid;
 }
 
-vtkSmartPointer<vtkPolyData> receivers_polydata(const ViewSnapshot& s) {
+vtkSmartPointer<vtkPolyData> receivers_polydata(const ViewSnapshot& s, double exposure) {
   auto pd = points_with_verts(s.receivers);
   auto snap = named<vtkIntArray>("snapshot_frame");
   for (std::size_t i = 0; i < s.receivers.size(); ++i) snap->InsertNextValue(s.frame);
   pd->GetPointData()->AddArray(snap);
+  if (s.light.size() == s.receivers.size() && !s.light.empty()) {
+    auto linear = [&](const char* name, glm::dvec3 ViewReceiverLight::*field) {
+      auto a = named<vtkFloatArray>(name, 3);
+      for (const auto& l : s.light) {
+        const glm::dvec3& v = l.*field;
+        const float t[3] = {static_cast<float>(v.x), static_cast<float>(v.y),
+                            static_cast<float>(v.z)};
+        a->InsertNextTypedTuple(t);
+      }
+      pd->GetPointData()->AddArray(a);
+    };
+    linear("planner_up", &ViewReceiverLight::planner_up);
+    linear("reference_up", &ViewReceiverLight::reference_up);
+    linear("planner_view", &ViewReceiverLight::planner_view);
+    linear("reference_view", &ViewReceiverLight::reference_view);
+    auto shown = [&](const char* name, glm::dvec3 ViewReceiverLight::*field) {
+      auto a = rgb_array(name);
+      for (const auto& l : s.light) {
+        const auto c = to_srgb8(Rgb(l.*field), exposure);
+        const unsigned char t[3] = {c[0], c[1], c[2]};
+        a->InsertNextTypedTuple(t);
+      }
+      pd->GetPointData()->AddArray(a);
+    };
+    shown("planner_view_rgb", &ViewReceiverLight::planner_view);
+    shown("reference_view_rgb", &ViewReceiverLight::reference_view);
+    auto de = named<vtkFloatArray>("de2000_view");
+    auto pop = named<vtkIntArray>("viewed_pop");
+    for (const auto& l : s.light) {
+      de->InsertNextValue(static_cast<float>(l.de2000_view));
+      pop->InsertNextValue(l.viewed_pop ? 1 : 0);
+    }
+    pd->GetPointData()->AddArray(de);
+    pd->GetPointData()->AddArray(pop);
+  }
   return pd;
 }
 
@@ -529,7 +564,7 @@ void render_snapshot(const SceneContext& ctx, const ViewSnapshot& s, const std::
   ren->AddActor(cone_actor);
 
   // Receivers: small yellow cubes.
-  auto recv = receivers_polydata(s);
+  auto recv = receivers_polydata(s, ctx.views.exposure);
   vtkNew<vtkCubeSource> cube;
   cube->SetXLength(1.2 * radius);
   cube->SetYLength(1.2 * radius);
@@ -658,6 +693,26 @@ RunViews load_views(const std::string& path) {
     for (std::size_t k = 0; k < recv.size(); ++k) {
       s.receivers.push_back(c.vec3(recv[k], sp + "/receivers/" + std::to_string(k)));
     }
+    if (sj.contains("light")) {
+      const auto& light = c.array(sj, sp, "light");
+      if (light.size() != s.receivers.size()) {
+        c.fail(sp + "/light", "must hold one entry per receiver");
+      }
+      for (std::size_t k = 0; k < light.size(); ++k) {
+        const std::string lp = sp + "/light/" + std::to_string(k);
+        const auto& lj = light[k];
+        ViewReceiverLight l;
+        l.planner_up = c.vec3(c.member(lj, lp, "pu"), lp + "/pu");
+        l.reference_up = c.vec3(c.member(lj, lp, "ru"), lp + "/ru");
+        l.planner_view = c.vec3(c.member(lj, lp, "pv"), lp + "/pv");
+        l.reference_view = c.vec3(c.member(lj, lp, "rv"), lp + "/rv");
+        l.de2000_view = c.number(c.member(lj, lp, "de"), lp + "/de");
+        const auto& pop = c.member(lj, lp, "pop");
+        if (!pop.is_boolean()) c.fail(lp + "/pop", "must be a boolean");
+        l.viewed_pop = pop.get<bool>();
+        s.light.push_back(l);
+      }
+    }
     v.snapshots.push_back(std::move(s));
   }
   return v;
@@ -740,7 +795,7 @@ std::vector<std::string> write_run_views(const std::string& run_dir, const Views
     write_xml<vtkXMLPolyDataWriter>(P("nodes_" + tag + ".vtp"), nodes.Get(), o.overwrite);
     auto cells = cells_grid(s, v.exposure);
     write_xml<vtkXMLUnstructuredGridWriter>(P("cells_" + tag + ".vtu"), cells.Get(), o.overwrite);
-    auto recv = receivers_polydata(s);
+    auto recv = receivers_polydata(s, v.exposure);
     write_xml<vtkXMLPolyDataWriter>(P("receivers_" + tag + ".vtp"), recv.Get(), o.overwrite);
     nodes_pvd.emplace_back(s.time, "nodes_" + tag + ".vtp");
     cells_pvd.emplace_back(s.time, "cells_" + tag + ".vtu");

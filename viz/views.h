@@ -7,7 +7,14 @@
 //                                          half_extent_m;
 //   cells.pvd      + cells_fNNNNNN.vtu     hexahedra of the nodes with a half extent > 0, with the
 //                                          same arrays as cell data;
-//   receivers.pvd  + receivers_fNNNNNN.vtp receivers per snapshot (points with vertex cells);
+//   receivers.pvd  + receivers_fNNNNNN.vtp receivers per snapshot (points with vertex cells)
+//                                          and, when views.json holds them, the arrays
+//                                          planner_up, reference_up, planner_view,
+//                                          reference_view (linear irradiance x3, straight up and
+//                                          toward the camera; the reference in SH9),
+//                                          planner_view_rgb, reference_view_rgb (displayed sRGB
+//                                          uchar x3), de2000_view and viewed_pop;
+//                                          the .pvd timesteps are simulated seconds;
 //   terrain.vts                            the world's surface, downsampled, albedo_rgb (sRGB
 //                                          uchar x3), height_m and biome arrays;
 //   camera_path.vtp                        the camera path as one polyline, frame and time_s;
@@ -45,12 +52,21 @@ struct ViewNode {
   Sh9Rgb sh;
 };
 
+// What the planner and the reference gave a receiver (views.json "light", optional).
+struct ViewReceiverLight {
+  glm::dvec3 planner_up{0.0}, reference_up{0.0};      // linear irradiance straight up
+  glm::dvec3 planner_view{0.0}, reference_view{0.0};  // ... at the normal toward the camera
+  double de2000_view = 0.0;                           // displayed, toward the camera
+  bool viewed_pop = false;
+};
+
 struct ViewSnapshot {
   int frame = 0;
   double time = 0.0;
   glm::dvec3 camera{0.0};
   std::vector<ViewNode> nodes;
   std::vector<glm::dvec3> receivers;
+  std::vector<ViewReceiverLight> light;  // empty, or one per receiver
 };
 
 struct RunViews {

@@ -95,9 +95,9 @@ void RunMetrics::begin_frame(std::int64_t frame, double time, double dt, bool ca
   frame_costs_given_ = false;
 }
 
-void RunMetrics::receiver(std::uint64_t id, std::span<const Rgb> planner_e,
-                          std::span<const Rgb> reference_e, const LookupResult& lookup,
-                          const ReceiverViewing& view, int stratum) {
+PopEvaluation RunMetrics::receiver(std::uint64_t id, std::span<const Rgb> planner_e,
+                                   std::span<const Rgb> reference_e, const LookupResult& lookup,
+                                   const ReceiverViewing& view, int stratum) {
   require_frame("receiver");
   const std::size_t n = settings_.normals.size();
   if (planner_e.size() != n || reference_e.size() != n) {
@@ -164,6 +164,7 @@ void RunMetrics::receiver(std::uint64_t id, std::span<const Rgb> planner_e,
     stale_.add(stale);
   }
   ++row_.receivers;
+  return ev;
 }
 
 void RunMetrics::demand_point(const LookupResult& lookup, double distance_to_camera_m,

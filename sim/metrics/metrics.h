@@ -182,10 +182,12 @@ class RunMetrics {
   // camera_cut: the camera teleported this frame; no receiver can pop across it.
   void begin_frame(std::int64_t frame, double time, double dt, bool camera_cut = false);
   // Throws std::invalid_argument unless both spans hold one value per normal. A receiver given
-  // no view weighs 0 in the viewed metrics.
+  // no view weighs 0 in the viewed metrics. Returns the receiver's pop evaluation (for tools
+  // that show where the pops were, e.g. `ambisim film`; scoring does not need it).
   // `stratum`: the receiver's stratum in a sampled referee (its kind), for the intervals.
-  void receiver(std::uint64_t id, std::span<const Rgb> planner_e, std::span<const Rgb> reference_e,
-                const LookupResult& lookup, const ReceiverViewing& view = {}, int stratum = 0);
+  PopEvaluation receiver(std::uint64_t id, std::span<const Rgb> planner_e,
+                         std::span<const Rgb> reference_e, const LookupResult& lookup,
+                         const ReceiverViewing& view = {}, int stratum = 0);
   // A sampled referee: every `stride`-th receiver is scored, of `receivers_lit` the planner
   // lit (summary().sample). Call any time before summary().
   void set_sample(std::int64_t stride, std::int64_t receivers_lit) {

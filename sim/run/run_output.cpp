@@ -102,6 +102,19 @@ std::string views_json(const RunResult& result) {
     nlohmann::json rec = nlohmann::json::array();
     for (const auto& p : s.receivers) rec.push_back(vec(p));
     o["receivers"] = std::move(rec);
+    if (!s.light.empty()) {
+      auto rgb = [](const Rgb& c) { return nlohmann::json::array({c.x, c.y, c.z}); };
+      nlohmann::json light = nlohmann::json::array();
+      for (const auto& l : s.light) {
+        light.push_back({{"pu", rgb(l.planner_up)},
+                         {"ru", rgb(l.reference_up)},
+                         {"pv", rgb(l.planner_view)},
+                         {"rv", rgb(l.reference_view)},
+                         {"de", l.de2000_view},
+                         {"pop", l.viewed_pop}});
+      }
+      o["light"] = std::move(light);
+    }
     snaps.push_back(std::move(o));
   }
   j["snapshots"] = std::move(snaps);

@@ -8,6 +8,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "sim/colour/ciede2000.h"
+#include "sim/colour/tone_map.h"
 #include "sim/metrics/coverage.h"
 #include "sim/metrics/view_weights.h"
 #include "sim/render/capture.h"
@@ -379,6 +381,13 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
     result.timing.lookups += static_cast<std::int64_t>(receiver_count + demand.size());
     const CameraView view(motion.view(), mf.camera.position, mf.look);
     std::size_t slot = span.begin;  // the next scored receiver's reference slot
+    const bool observe = options.on_frame && reference != nullptr;
+    FrameObservation observed;
+    const bool snapshot_now =
+        snapshot_every > 0.0 &&
+        (result.snapshots.empty() ||
+         mf.frame.time >= result.snapshots.back().time + snapshot_every - 1e-9);
+    std::vector<Snapshot::ReceiverLight> snapshot_light;
     for (std::size_t k = 0; k < receiver_count; ++k) {
       const Receiver& r = motion.receivers()[k];
       const LookupResult& lr = receiver_lookups[k];
@@ -389,8 +398,29 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
         for (std::size_t m = 0; m < nn; ++m) {
           planner_e[m] = sh_irradiance(lr.sh, settings.normals[m]);
         }
-        metrics.receiver(r.id, planner_e, std::span<const Rgb>(reference->values(slot), nn), lr,
-                         receiver_viewing(view, r), receiver_stratum(r));
+        const ReceiverViewing viewing = receiver_viewing(view, r);
+        const PopEvaluation ev =
+            metrics.receiver(r.id, planner_e, std::span<const Rgb>(reference->values(slot), nn),
+                             lr, viewing, receiver_stratum(r));
+        if (snapshot_now) {
+          const Sh9Rgb ref_sh = slot < reference->sh.size() ? reference->sh[slot] : Sh9Rgb{};
+          const glm::dvec3 up(0.0, 0.0, 1.0);
+          Snapshot::ReceiverLight l;
+          l.planner_up = sh_irradiance(lr.sh, up);
+          l.reference_up = sh_irradiance(ref_sh, up);
+          l.planner_view = sh_irradiance(lr.sh, viewing.to_camera);
+          l.reference_view = sh_irradiance(ref_sh, viewing.to_camera);
+          l.de2000_view = ciede2000(display_lab(l.planner_view, settings.exposure),
+                                    display_lab(l.reference_view, settings.exposure));
+          l.viewed_pop = ev.viewed_pop && viewing.weight > 0.0;
+          snapshot_light.push_back(l);
+        }
+        if (observe) {
+          observed.receivers.push_back(
+              {r.id, r.position, r.size_m, lr.sh,
+               slot < reference->sh.size() ? reference->sh[slot] : Sh9Rgb{}, viewing.weight,
+               ev.viewed_pop && viewing.weight > 0.0});
+        }
         ++slot;
       }
       metrics.demand_point(lr, glm::length(r.position - mf.camera.position), DemandKind::receiver);
@@ -410,18 +440,29 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
     result.timing.planner_s += seconds_since(t0);
 
     if (options.keep_frames) result.camera_path.push_back(mf.camera.position);
-    if (snapshot_every > 0.0 &&
-        (result.snapshots.empty() ||
-         mf.frame.time >= result.snapshots.back().time + snapshot_every - 1e-9)) {
+    if (snapshot_now) {
       Snapshot snap;
       snap.frame = mf.frame.index;
       snap.time = mf.frame.time;
       snap.camera = mf.camera.position;
       planner.describe_nodes(snap.nodes);
       for (const auto& r : motion.receivers()) snap.receivers.push_back(r.position);
+      // The light per receiver, when every receiver is scored (a sampled referee has no truth
+      // for the others, and the views pair the two lists by position).
+      if (snapshot_light.size() == snap.receivers.size()) snap.light = std::move(snapshot_light);
       result.snapshots.push_back(std::move(snap));
     }
     FrameRow row = metrics.end_frame();
+    if (observe) {
+      observed.frame = mf.frame.index;
+      observed.time = mf.frame.time;
+      observed.camera = mf.camera.position;
+      observed.look = mf.look;
+      observed.camera_cut = mf.camera.cut;
+      observed.view = motion.view();
+      observed.row = row;
+      options.on_frame(observed);
+    }
     if (options.keep_frames) result.frames.push_back(row);
     ++frame_index;
   }

@@ -18,6 +18,7 @@
 //      the next frame.
 // A planner that ignores the budget (the oracle) gets every request rendered and delivered at
 // once, before its lookups.
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -54,6 +55,15 @@ struct Snapshot {
   glm::dvec3 camera{0.0};
   std::vector<ProbeNodeView> nodes;
   std::vector<glm::dvec3> receivers;
+  // Per receiver (same order; empty without a reference): the planner's and the reference's
+  // irradiance (the reference capture in SH9) straight up and toward the camera, the displayed
+  // CIEDE2000 between the two toward the camera, and whether it popped where seen this frame.
+  struct ReceiverLight {
+    Rgb planner_up, reference_up, planner_view, reference_view;
+    double de2000_view = 0.0;
+    bool viewed_pop = false;
+  };
+  std::vector<ReceiverLight> light;
 };
 
 struct RunResult {
@@ -75,9 +85,38 @@ struct RunResult {
 // At most this many snapshots per run: longer runs space them out.
 inline constexpr double kMaxSnapshots = 120.0;
 
+// One live receiver of a frame as the referee scored it, for tools that show a run
+// (`ambisim film`): what the planner answered, the reference's SH9 at the same slot, and
+// whether it popped where the player sees it.
+struct ObservedReceiver {
+  std::uint64_t id = 0;
+  glm::dvec3 position{0.0};
+  double size_m = 0.0;  // diameter of the sphere a player sees
+  Sh9Rgb planner_sh;    // the planner's lookup
+  Sh9Rgb reference_sh;  // the reference capture in SH9 (the oracle's answer)
+  double screen_weight = 0.0;
+  bool viewed_pop = false;  // counted in pops.viewed this frame
+};
+
+// A scored frame: the camera as the player's view sees it, every live receiver (id order) and
+// the frame's row of the per-frame series.
+struct FrameObservation {
+  std::int64_t frame = 0;
+  double time = 0.0;
+  glm::dvec3 camera{0.0};
+  glm::dvec3 look{1.0, 0.0, 0.0};
+  bool camera_cut = false;
+  ViewSpec view;
+  std::vector<ObservedReceiver> receivers;
+  FrameRow row;
+};
+
 struct SimulationOptions {
   bool keep_frames = true;        // keep the per-frame series
   double snapshot_every_s = 1.0;  // record a Snapshot this often (0: never)
+  // Called once per frame after it is scored (simulate() with a reference only); empty:
+  // nothing is gathered. It only reads, so a run with an observer scores the same.
+  std::function<void(const FrameObservation&)> on_frame;
 };
 
 // How the player's view sees receiver r: its screen weight (a sphere of r.size_m) and the

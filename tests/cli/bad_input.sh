@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Bad input: one line naming the file and JSON path, exit code 2, and nothing written: the
 # output path does not appear, or an existing output directory is byte-for-byte unchanged.
-# Covers run, sweep, world, probe, compare, plot and viz. Usage: bad_input.sh AMBISIM_BINARY SOURCE_DIR
+# Covers run, sweep, world, probe, compare, plot, viz and film. Usage: bad_input.sh AMBISIM_BINARY SOURCE_DIR
 set -u
 bin="$1"
 src="$(cd "$2" && pwd)"
@@ -536,6 +536,32 @@ if [ -n "$run_dir" ] && "$bin" viz "${run_dir%/}" --frames 0 >/dev/null 2>&1; th
   expect_error viz_existing_views "already exists (use --force" "$tmp/swept" -- viz "${run_dir%/}" --frames 0
 else
   echo "FAIL setup: viz of a finished run"
+  fail=1
+fi
+
+# ---------------------------------------------------------------- film
+expect_error film_not_dir "a_file: is not a run directory" "$tmp/film.mp4" -- film "$tmp/a_file" --out "$tmp/film.mp4"
+expect_error film_not_run "result.json: missing" "$tmp/film.mp4" -- film "$tmp/pngdir" --out "$tmp/film.mp4"
+if "$bin" run "$good" --planner constant --out "$tmp/film_a" --quiet >/dev/null 2>&1; then
+  expect_error film_after_end "the time range 1.000..99.000 s is not inside the run (0..2.000 s)" "$tmp/film.mp4" -- film "$tmp/film_a" --out "$tmp/film.mp4" --from 1 --to 99
+  expect_error film_empty_range "the time range 1.500..1.000 s is not inside the run" "$tmp/film.mp4" -- film "$tmp/film_a" --out "$tmp/film.mp4" --from 1.5 --to 1
+  expect_error film_odd_size "--size: must be WxH, even" "$tmp/film.mp4" -- film "$tmp/film_a" --out "$tmp/film.mp4" --size 161x90
+  expect_error film_bad_fps "--fps: must be 1..240, got 0" "$tmp/film.mp4" -- film "$tmp/film_a" --out "$tmp/film.mp4" --fps 0
+  printf 'keep me\n' >"$tmp/kept.mp4"
+  expect_error film_existing "kept.mp4: already exists (use --force" "$tmp/kept.mp4" -- film "$tmp/film_a" --out "$tmp/kept.mp4"
+  mutate film_other_world 'd["world"]["seed"] = 4'
+  if "$bin" run "$tmp/film_other_world.json" --planner constant --out "$tmp/film_b" --quiet >/dev/null 2>&1; then
+    expect_error film_other_scenario "a run of another scenario" "$tmp/film.mp4" -- film "$tmp/film_a" "$tmp/film_b" --out "$tmp/film.mp4"
+  else
+    echo "FAIL setup: run of another world for film"
+    fail=1
+  fi
+  # A result the re-run does not reproduce is refused, not filmed.
+  mkdir -p "$tmp/film_edited" && cp "$tmp/film_a"/* "$tmp/film_edited/"
+  python3 -c 'import json,sys; p=sys.argv[1]; d=json.load(open(p)); d["summary"]["frames"] += 1; json.dump(d, open(p, "w"))' "$tmp/film_edited/result.json"
+  expect_error film_not_reproduced "the re-run does not reproduce this result" "$tmp/film.mp4" -- film "$tmp/film_edited" --out "$tmp/film.mp4"
+else
+  echo "FAIL setup: run for film"
   fail=1
 fi
 

@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "policies/registry/presets.h"
+#include "policies/registry/registry.h"
 #include "sim/colour/ciede2000.h"
 #include "sim/colour/cielab.h"
 #include "viz/planner_style.h"
@@ -130,4 +132,33 @@ TEST_CASE("marker variants cycle through the five markers", "[viz][style]") {
   CHECK(seen.size() == 5);
   CHECK(ambisim::marker_variant(3, 0) == 3);
   CHECK(ambisim::marker_variant(3, 5) == 3);
+}
+
+TEST_CASE("every registered planner and its preset labels: no two alike in one chart",
+          "[viz][style]") {
+  // What a sweep over the whole registry charts: each planner by name and, for every preset,
+  // NAME_PRESET (sweep.cpp's label for a preset run), all at once.
+  std::vector<std::string> labels;
+  for (const auto& info : ambisim::planner_catalogue()) {
+    labels.push_back(info.name);
+    for (const auto& preset : ambisim::preset_names()) labels.push_back(info.name + "_" + preset);
+  }
+  REQUIRE(labels.size() > ambisim::planner_catalogue().size());
+  check_no_two_alike(labels);
+  // Every registered planner has a fixed look, which a preset label never takes over.
+  const auto styles = ambisim::planner_styles(labels);
+  for (const auto& info : ambisim::planner_catalogue()) {
+    INFO(info.name);
+    REQUIRE(ambisim::known_planner_style(info.name).has_value());
+    CHECK(styles.at(info.name) == *ambisim::known_planner_style(info.name));
+  }
+  // Deterministic: the same labels in another order give the same looks.
+  auto reversed = labels;
+  std::reverse(reversed.begin(), reversed.end());
+  CHECK(ambisim::planner_styles(reversed) == styles);
+  // Only ambisim is emphasised; its tuned label is drawn like any other planner.
+  for (const auto& [label, s] : styles) {
+    INFO(label);
+    CHECK(s.emphasis == (label == "ambisim"));
+  }
 }
