@@ -183,6 +183,13 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
     const std::ptrdiff_t slot = reference->find_slot(frame, c.request.position);
     c.memo = slot >= 0 && !c.request.lamp_layer ? &reference->sh[static_cast<std::size_t>(slot)]
                                                 : nullptr;
+    // A sampled referee scores some receivers only: the oracle's answer elsewhere is never
+    // scored, so it is not rendered (it is black), or a crowd would cost a capture per member
+    // per frame.
+    static const Sh9Rgb kUnscored{};
+    if (c.memo == nullptr && !c.request.lamp_layer && scenario.reference.sample_stride > 1) {
+      c.memo = &kUnscored;
+    }
     if (c.memo == nullptr) {
       if (c.cube.size != oracle_face_size) c.cube = CubeMap(oracle_face_size);
       for (int f = 0; f < c.faces(); ++f) render_face(c, f, light);
@@ -400,8 +407,8 @@ RunResult run_simulation(const Scenario& scenario, const World& world,
         }
         const ReceiverViewing viewing = receiver_viewing(view, r);
         const PopEvaluation ev =
-            metrics.receiver(r.id, planner_e, std::span<const Rgb>(reference->values(slot), nn),
-                             lr, viewing, receiver_stratum(r));
+            metrics.receiver(r.id, planner_e, std::span<const Rgb>(reference->values(slot), nn), lr,
+                             viewing, receiver_stratum(r));
         if (snapshot_now) {
           const Sh9Rgb ref_sh = slot < reference->sh.size() ? reference->sh[slot] : Sh9Rgb{};
           const glm::dvec3 up(0.0, 0.0, 1.0);

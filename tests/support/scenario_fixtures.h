@@ -16,7 +16,8 @@ inline const std::string kSmallDrive =
     std::string(AMBISIM_SOURCE_DIR) + "/tests/data/small_drive.json";
 
 // Every scenario file under scenarios/ (sorted by path), cut to its first `seconds` with an
-// 8x8 reference on a 0.1 s grid; tests/data/small_drive.json appended when asked.
+// 8x8 reference on a 0.1 s grid (scoring the sample the file asks for, if any);
+// tests/data/small_drive.json appended when asked.
 std::vector<Scenario> short_scenarios(double seconds, bool with_small_drive = false);
 
 // The world of a scenario, built once per world description for the whole test binary: keyed

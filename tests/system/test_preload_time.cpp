@@ -147,7 +147,7 @@ TEST_CASE("a capture time outside preload is refused", "[preload]") {
   CHECK_THROWS_AS(simulate_without_reference(sc, world, planner), std::logic_error);
 }
 
-TEST_CASE("a preload capture may ask for its own face size; a run capture may not", "[preload]") {
+TEST_CASE("a preload capture may ask for its own face size, a run capture may not", "[preload]") {
   const Scenario& sc = sunset();
   const World& world = test::world_for(sc);
   const glm::dvec3 at = world.road().empty() ? glm::dvec3(0.0, 0.0, 50.0)

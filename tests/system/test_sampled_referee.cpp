@@ -34,7 +34,7 @@ RunResult run(const Scenario& s, const std::string& planner) {
 
 }  // namespace
 
-TEST_CASE("the sampled referee's interval holds the full score; the planner is unaffected",
+TEST_CASE("the sampled referee's interval holds the full score, and the planner is unaffected",
           "[referee][sample]") {
   const double seconds = 8.0;
   for (const char* planner : {"ambisim", "nearest"}) {

@@ -42,7 +42,7 @@ std::string read_file(const std::string& path) {
 
 }  // namespace
 
-TEST_CASE("oracle scores near the SH9 ceiling with no pops; constant ambient scores badly",
+TEST_CASE("oracle scores near the SH9 ceiling with no pops, constant ambient scores badly",
           "[simulation]") {
   auto& f = fixture();
   const RunResult oracle = f.run("oracle");

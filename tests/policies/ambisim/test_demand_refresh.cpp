@@ -107,7 +107,7 @@ TEST_CASE("ambisim rescales its probes by the scene's light level between refres
   CHECK(off->lookup(at).sh.c[0] == b2);
 }
 
-TEST_CASE("ambisim's lamp layer: a switch costs no recapture; without it, near ones refresh",
+TEST_CASE("ambisim's lamp layer: a switch costs no recapture, without it, near ones refresh",
           "[ambisim]") {
   // One lamp at (0, 0, 10) reaching 15 m; it switches on at 20 s (the world reports 1/s for
   // 0.5 s either side). Captures within reach (plus a spacing) render a lamp layer; lookups

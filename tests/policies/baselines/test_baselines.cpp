@@ -164,7 +164,7 @@ TEST_CASE("constant takes its capture at load time, before the first frame", "[p
   CHECK(p->plan(frame_at(1, 1.0 / 60, cam)).empty());
 }
 
-TEST_CASE("hemisphere keeps L00 and L10 only; its default is sky above, ground below",
+TEST_CASE("hemisphere keeps L00 and L10 only, its default is sky above, ground below",
           "[policies]") {
   auto p = make_planner(
       "hemisphere",

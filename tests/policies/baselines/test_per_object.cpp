@@ -95,7 +95,7 @@ struct FakeLoop {
 
 }  // namespace
 
-TEST_CASE("per_object: 50 spawns/s outrun 1 face/frame at 60 fps; 300 fps keeps up",
+TEST_CASE("per_object: 50 spawns/s outrun 1 face/frame at 60 fps, 300 fps keeps up",
           "[baselines]") {
   // 60 fps, 1 face per frame: 10 captures/s against 50 new objects/s.
   FakeLoop slow(60.0, 50.0);

@@ -209,7 +209,7 @@ TEST_CASE("octree+vp descends toward the predicted position first", "[octree]") 
   }
 }
 
-TEST_CASE("trilinear lookup reproduces a linear field exactly; octant weighs the 8 corners",
+TEST_CASE("trilinear lookup reproduces a linear field exactly, octant weighs the 8 corners",
           "[octree]") {
   // Constant-colour probes whose red DC grows linearly: trilinear interpolation of a linear
   // function is exact, in the finest leaf and in coarser complete nodes alike.
@@ -254,7 +254,7 @@ TEST_CASE("trilinear lookup reproduces a linear field exactly; octant weighs the
   CHECK(hit.sh.c[0].x == Approx(1.0 + 0.04 + 0.04 + 0.18).epsilon(1e-5));
 }
 
-TEST_CASE("before any data lookups fall back to the default ambient; outside the root too",
+TEST_CASE("before any data lookups fall back to the default ambient, outside the root too",
           "[octree]") {
   auto planner = make_octree({});
   for (const glm::dvec3& p : {glm::dvec3(0.0), glm::dvec3(1e6, -1e6, 1e4)}) {
@@ -327,7 +327,7 @@ TEST_CASE("long flight: the count cap deletes sets next to the camera, a lifetim
   CHECK(life.max_live <= 10 * 60 + 2);  // bounded by the capture rate x lifetime
 }
 
-TEST_CASE("octree params() echo every parameter; both planners are registered", "[octree]") {
+TEST_CASE("octree params() echo every parameter, both planners are registered", "[octree]") {
   const auto planner = make_octree({"retention=lifetime", "max_sets=123", "precision=fp16"});
   const nlohmann::json j = planner->params();
   CHECK(j.at("retention") == "lifetime");

@@ -62,7 +62,7 @@ TEST_CASE("running and time-weighted means", "[metrics]") {
   CHECK(t.weight() == Approx(0.11).margin(kTol));
 }
 
-TEST_CASE("weighted percentile: equal weights are the nearest rank; weight moves it",
+TEST_CASE("weighted percentile: equal weights are the nearest rank, weight moves it",
           "[statistics]") {
   std::vector<WeightedSample> v;
   for (int k = 20; k >= 1; --k) v.push_back({static_cast<float>(k), 1.0f});

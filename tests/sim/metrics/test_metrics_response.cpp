@@ -54,7 +54,7 @@ TEST_CASE("a planner that never follows is censored at the receiver's end", "[me
   CHECK(s.response.median_s == Approx(239.0 / kFps - 1.0).margin(kTimeTol));
 }
 
-TEST_CASE("no true change, no event; a slow change is no event", "[metrics]") {
+TEST_CASE("no true change, no event, a slow change is no event", "[metrics]") {
   CHECK(step_run(50, -1).response.events == 0);  // ends before the step
   CHECK(std::isnan(step_run(50, -1).response.median_s));
   // The truth drifts 40 -> 70 over 10 s: 1.5 L per 0.5 s, well below 5 dE00.

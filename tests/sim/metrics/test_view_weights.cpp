@@ -23,7 +23,7 @@ TEST_CASE("a sphere's solid angle: the closed form and its limits", "[metrics][v
   CHECK(sphere_solid_angle(1.0, 0.5) == 0.0);
 }
 
-TEST_CASE("a receiver behind the camera weighs 0; one at twice the distance a quarter",
+TEST_CASE("a receiver behind the camera weighs 0, one at twice the distance a quarter",
           "[metrics][view]") {
   const CameraView v(kView, {0, 0, 0}, {1, 0, 0});
   const double near = v.screen_weight({50, 0, 0}, 1.0);

@@ -74,7 +74,7 @@ double p95_against_64(const World& world, int size) {
 }
 }  // namespace
 
-TEST_CASE("the default 24x24 reference is within 0.5 dE00 (p95) of a 64x64 one; 16x16 is not",
+TEST_CASE("the default 24x24 reference is within 0.5 dE00 (p95) of a 64x64 one, 16x16 is not",
           "[reference]") {
   const World world(load_scenario(kSmall).world);
   // Measured p95 (max): 16 -> 0.68 (1.16), 24 -> 0.30 (0.56), 32 -> 0.22 (0.48), 48 -> 0.13.

@@ -95,7 +95,7 @@ TEST_CASE("a landmark the world lacks is refused before anything runs", "[scenar
   }
 }
 
-TEST_CASE("a sweep seed moves the world and the receivers; the scenario's own seed keeps both",
+TEST_CASE("a sweep seed moves the world and the receivers, the scenario's own seed keeps both",
           "[scenario][sweep]") {
   json doc = {{"world", {{"seed", 1}}}, {"receivers", {{"seed", 11}}}};
   json own = doc;

@@ -163,7 +163,7 @@ TEST_CASE("level: a step reads back exactly at cell centres, row 0 north, shadow
   CHECK(irradiance(near, {0, 0, 1}).y < irradiance(far, {0, 0, 1}).y);
 }
 
-TEST_CASE("level: a plane is an infinite Lambertian plane; RAW and PNG agree", "[level]") {
+TEST_CASE("level: a plane is an infinite Lambertian plane, RAW and PNG agree", "[level]") {
   const int n = 48;
   const std::uint16_t v = 32768;
   PngSamples h = image(n, n, 1, 16), a = image(n, n, 3, 8);
