@@ -13,8 +13,9 @@ import argparse
 import csv
 import math
 import os
-import re
 import sys
+
+from doc_block import rewrite_block
 
 COLUMNS = [
     ("viewed p95 dE00", "error.viewed.de2000.p95"),
@@ -64,22 +65,9 @@ def main():
     ap.add_argument("--labels", nargs=2, required=True)
     ap.add_argument("--check", action="store_true")
     args = ap.parse_args()
-    doc = open(args.doc).read()
-    pattern = re.compile(
-        r"(<!-- pair-table: " + re.escape(args.block) + r" -->\n)(.*?)(<!-- end pair-table -->)",
-        re.S)
-    if not pattern.search(doc):
-        sys.exit(f"{args.doc}: no block <!-- pair-table: {args.block} -->")
-    new = pattern.sub(lambda m: m.group(1) + table(args.sweep_dir, *args.labels) + "\n" +
-                      m.group(3), doc)
-    if args.check:
-        sys.exit(0 if new == doc else 1)
-    if new != doc:
-        tmp = args.doc + ".tmp"
-        with open(tmp, "w") as f:
-            f.write(new)
-        os.replace(tmp, args.doc)
-
+    ok = rewrite_block(args.doc, f"<!-- pair-table: {args.block} -->", "<!-- end pair-table -->",
+                       table(args.sweep_dir, *args.labels), args.check)
+    sys.exit(0 if ok else 1)
 
 if __name__ == "__main__":
     main()

@@ -13,9 +13,10 @@ Standard library only.
 """
 import argparse
 import json
-import os
 import re
 import sys
+
+from doc_block import rewrite_block
 
 
 def load(path):
@@ -103,19 +104,9 @@ def main():
     ap.add_argument("--doc", default="docs/PERFORMANCE.md")
     ap.add_argument("--check", action="store_true")
     args = ap.parse_args()
-    doc = open(args.doc).read()
-    pattern = re.compile(r"(<!-- game-load-table -->\n)(.*?)(<!-- end game-load-table -->)", re.S)
-    if not pattern.search(doc):
-        sys.exit(f"{args.doc}: no <!-- game-load-table --> block")
-    new = pattern.sub(lambda m: m.group(1) + table(load(args.bench_json)) + "\n" + m.group(3), doc)
-    if args.check:
-        sys.exit(0 if new == doc else 1)
-    if new != doc:
-        tmp = args.doc + ".tmp"
-        with open(tmp, "w") as f:
-            f.write(new)
-        os.replace(tmp, args.doc)
-
+    ok = rewrite_block(args.doc, "<!-- game-load-table -->", "<!-- end game-load-table -->",
+                       table(load(args.bench_json)), args.check)
+    sys.exit(0 if ok else 1)
 
 if __name__ == "__main__":
     main()
