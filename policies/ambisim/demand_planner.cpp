@@ -296,11 +296,7 @@ bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* 
     const Probe& q = probes_[i];
     const glm::dvec3 v = q.position - p;
     const double d2 = glm::dot(v, v);
-    const double r = support_radius(q);
-    if (d2 >= r * r && !kernel_tail_) return;
-    const double f = presence(q);
-    if (f <= 0.0) return;
-    const double w = kernel(q, d2) * f;
+    const double w = bump_weight(q, d2);
     if (w <= 0.0) return;
     // The value itself also enters gradually, from what was shown here before.
     add_shown(q, static_cast<float>(w), sum);
@@ -409,15 +405,20 @@ LookupResult DemandPlanner::lookup_with(const glm::dvec3& p, bool reference) con
 
 LookupResult DemandPlanner::lookup(const glm::dvec3& p) const { return lookup_with(p, false); }
 
+double DemandPlanner::bump_weight(const Probe& q, double d2) const {
+  const double r = support_radius(q);
+  if (d2 >= r * r && !kernel_tail_) return 0.0;
+  const double f = presence(q);
+  return f > 0.0 ? kernel(q, d2) * f : 0.0;
+}
+
 bool DemandPlanner::lookup_uses_tail(const glm::dvec3& p) const {
   if (kernel_tail_) return true;
   double total = 0.0;
   auto visit = [&](std::size_t i) {
     const Probe& q = probes_[i];
     const glm::dvec3 v = q.position - p;
-    const double d2 = glm::dot(v, v);
-    const double r = support_radius(q);
-    if (d2 < r * r) total += kernel(q, d2) * presence(q);
+    total += bump_weight(q, glm::dot(v, v));
   };
   index_.for_each_candidate(p, visit);
   for (std::size_t i = index_.size(); i < probes_.size(); ++i) visit(i);

@@ -118,6 +118,9 @@ class DemandPlanner final : public Planner {
   // 1.5 spacings (support_radius), zero beyond.
   double kernel(const Probe& q, double d2) const;
   static double support_radius(const Probe& q) { return 1.5 * q.spacing; }
+  // A probe's weight in the bump blend at squared distance d2: kernel x presence, 0 beyond its
+  // support (the tail kernel reaches everywhere).
+  double bump_weight(const Probe& q, double d2) const;
   // Adds w x what the probe shows now (shown(), without building it) to sum.
   void add_shown(const Probe& q, float w, Sh9Rgb& sum) const;
   // Interpolated coefficients at p from the current probes; false if none is present. The
