@@ -377,10 +377,10 @@ void BM_Lookup(benchmark::State& state, const std::string& planner, bool naive) 
   state.counters["fell_back"] = static_cast<double>(fell_back) /
                                 static_cast<double>(std::max<std::int64_t>(1, state.iterations()));
   if (const auto* a = dynamic_cast<const DemandPlanner*>(&p)) {
-    // ambisim's profile: the share of the points whose lookup takes the tail's linear scan.
-    int tail = 0;
-    for (const auto& q : f.points) tail += a->lookup_uses_tail(q) ? 1 : 0;
-    state.counters["tail_share"] = static_cast<double>(tail) / static_cast<double>(f.points.size());
+    // ambisim's profile: the share of the points whose lookup mixes in the far field.
+    int far = 0;
+    for (const auto& q : f.points) far += a->lookup_uses_far_field(q) ? 1 : 0;
+    state.counters["far_share"] = static_cast<double>(far) / static_cast<double>(f.points.size());
   }
   state.SetLabel(setup_for(planner, n).label);
   set_naive(p, false);
@@ -401,7 +401,7 @@ void BM_Frame(benchmark::State& state, const std::string& planner, bool naive) {
 }
 
 // ambisim's index path alone: 4096 points within 1 m of its live probes (seed 9), where the
-// bumps cover every lookup (tail_share 0), on the same filled planner as BM_Lookup.
+// bumps cover every lookup (far_share 0), on the same filled planner as BM_Lookup.
 void BM_LookupNearProbes(benchmark::State& state, const std::string& planner) {
   const std::int64_t n = state.range(0);
   Filled& f = filled(planner, n);
@@ -422,9 +422,9 @@ void BM_LookupNearProbes(benchmark::State& state, const std::string& planner) {
   }
   report_stats(state, p, n, f.fill_s);
   if (const auto* a = dynamic_cast<const DemandPlanner*>(&p)) {
-    int tail = 0;
-    for (const auto& q : points) tail += a->lookup_uses_tail(q) ? 1 : 0;
-    state.counters["tail_share"] = static_cast<double>(tail) / static_cast<double>(points.size());
+    int far = 0;
+    for (const auto& q : points) far += a->lookup_uses_far_field(q) ? 1 : 0;
+    state.counters["far_share"] = static_cast<double>(far) / static_cast<double>(points.size());
   }
 }
 

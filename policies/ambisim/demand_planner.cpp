@@ -265,11 +265,11 @@ double DemandPlanner::kernel(const Probe& q, double d2) const {
 bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* meta,
                                 bool reference) const {
   // Two blends: the bumps (compact, found by the index) and, only where the bumps' total weight
-  // is below kBumpConfidence, the faint tail of every probe, 1 / (1 + u^4) (a linear scan:
-  // rare, away from every probe). The answer is alpha x bumps + (1 - alpha) x tail with
-  // alpha = min(1, bump total / kBumpConfidence): continuous everywhere and in time (both
-  // blends are, and alpha is), so a receiver crossing the edge of the probes' reach does not
-  // pop, as it did with the nearest probe there (README, "A game's load").
+  // is below kBumpConfidence, the far field (policies/ambisim/far_field.h: the probes' pull-push
+  // pyramid, a few cells read per level whatever the number of probes). The answer is
+  // alpha x bumps + (1 - alpha) x far field with alpha = min(1, bump total / kBumpConfidence):
+  // continuous everywhere and in time (both blends are, and alpha is), so a receiver crossing
+  // the edge of the probes' reach does not pop, as it did with the nearest probe there.
   struct Candidate {
     double weight;
     double d2;
@@ -311,52 +311,23 @@ bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* 
   }
   for (std::size_t i = scan_from; i < probes_.size(); ++i) visit(i);
   const double alpha = kernel_tail_ ? 1.0 : std::min(1.0, total / kBumpConfidence);
-  if (alpha < 1.0) {
-    // The tail, normalised on its own, then mixed in: contributors are reweighted to their
-    // shares of the mix.
-    Sh9Rgb tail_sum;
-    double tail_total = 0.0, tail_time = 0.0;
-    std::array<Candidate, 8> bump_top = top;
-    const int bump_count = count;
-    count = 0;
-    auto tail_of = [&](const Probe& q, double d2) {
-      const double r = support_radius(q);
-      const double u2 = d2 / (r * r);
-      return presence(q) / (1.0 + u2 * u2);
-    };
-    for (const Probe& q : probes_) {
-      if (presence(q) <= 0.0) continue;
-      const glm::dvec3 v = q.position - p;
-      const double t = tail_of(q, glm::dot(v, v));
-      add_shown(q, static_cast<float>(t), tail_sum);
-      tail_total += t;
-      tail_time += t * q.data_time;
-    }
-    if (tail_total <= 0.0) return false;                 // no probe is present
+  double far_cell_m = 0.0;
+  FarField::Answer far;
+  // The far field's sums are those of the last update(): a probe delivered since (present at
+  // once only with fade_s = 0) is in the bumps alone until then.
+  if (alpha < 1.0 && (reference ? evaluate_far_field_reference(p, far) : far_.evaluate(p, far))) {
+    // The bump contributors keep their shares of the mix; the far field's are not probes.
     const double a = total > 0.0 ? alpha / total : 0.0;  // per unit of bump weight
-    const double b = (1.0 - alpha) / tail_total;         // per unit of tail weight
+    const float b = static_cast<float>(1.0 - alpha);
     Sh9Rgb mixed;
     for (int k = 0; k < kShCount; ++k) {
       const auto c = static_cast<std::size_t>(k);
-      mixed.c[c] = sum.c[c] * static_cast<float>(a) + tail_sum.c[c] * static_cast<float>(b);
+      mixed.c[c] = sum.c[c] * static_cast<float>(a) + far.sh.c[c] * b;
     }
     sum = mixed;
-    time_sum = time_sum * a + tail_time * b;
-    // Each probe's share of the mix: its tail share plus its bump share (bump_top holds the
-    // 8 heaviest bumps; a probe outside them weighs under 1/8 of the bump share).
-    for (std::size_t i = 0; i < probes_.size(); ++i) {
-      const Probe& q = probes_[i];
-      if (presence(q) <= 0.0) continue;
-      const glm::dvec3 v = q.position - p;
-      const double d2 = glm::dot(v, v);
-      double share = b * tail_of(q, d2);
-      for (int k = 0; k < bump_count; ++k) {
-        if (bump_top[static_cast<std::size_t>(k)].index == i) {
-          share += a * bump_top[static_cast<std::size_t>(k)].weight;
-        }
-      }
-      keep({share, d2, i});
-    }
+    time_sum = time_sum * a + far.data_time * (1.0 - alpha);
+    for (int k = 0; k < count; ++k) top[static_cast<std::size_t>(k)].weight *= a;
+    far_cell_m = far.cell_m;
     total = 1.0;
   }
   if (total <= 0.0) return false;
@@ -385,8 +356,14 @@ bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* 
       }
     }
     meta->contributor_count = count;
-    const Probe& q = probes_[closest_index];
-    meta->spacing_m = std::max(static_cast<double>(q.spacing * q.detail), 2.0 * std::sqrt(closest));
+    // The resolution of what answered: the closest contributor's spacing (or twice its
+    // distance), and where the far field shares the answer, the span of its trilinear reach.
+    meta->spacing_m = 2.0 * far_cell_m;
+    if (count > 0) {
+      const Probe& q = probes_[closest_index];
+      meta->spacing_m = std::max(
+          {meta->spacing_m, static_cast<double>(q.spacing * q.detail), 2.0 * std::sqrt(closest)});
+    }
     meta->data_time = time_sum / total;
   }
   return true;
@@ -412,8 +389,8 @@ double DemandPlanner::bump_weight(const Probe& q, double d2) const {
   return f > 0.0 ? kernel(q, d2) * f : 0.0;
 }
 
-bool DemandPlanner::lookup_uses_tail(const glm::dvec3& p) const {
-  if (kernel_tail_) return true;
+bool DemandPlanner::lookup_uses_far_field(const glm::dvec3& p) const {
+  if (kernel_tail_) return false;
   double total = 0.0;
   auto visit = [&](std::size_t i) {
     const Probe& q = probes_[i];
@@ -444,6 +421,30 @@ void DemandPlanner::reindex() {
     radii[i] = support_radius(probes_[i]);
   }
   index_.build(positions, radii);
+  far_.build(positions);
+  fill_far_field();
+}
+
+void DemandPlanner::add_far_sums(std::size_t i, FarField::Sums& s) const {
+  const Probe& q = probes_[i];
+  const double f = presence(q);
+  if (f <= 0.0) return;
+  add_shown(q, static_cast<float>(f), s.sh);
+  s.weight += f;
+  s.time += f * q.data_time;
+}
+
+void DemandPlanner::fill_far_field() {
+  // The old kernel's tail reaches everywhere: it never asks the far field.
+  if (kernel_tail_) return;
+  far_.fill([this](std::size_t i, FarField::Sums& s) { add_far_sums(i, s); });
+}
+
+bool DemandPlanner::evaluate_far_field_reference(const glm::dvec3& p, FarField::Answer& out) const {
+  std::vector<glm::dvec3> positions(probes_.size());
+  for (std::size_t i = 0; i < probes_.size(); ++i) positions[i] = probes_[i].position;
+  return FarField::evaluate_reference(
+      p, positions, [this](std::size_t i, FarField::Sums& s) { add_far_sums(i, s); }, out);
 }
 
 double DemandPlanner::nearest_distance(const glm::dvec3& c, double* detail) const {
@@ -702,7 +703,13 @@ void DemandPlanner::deliver(const FinishedProbe& probe) {
   in_flight_.erase(it);
   probes_.push_back(q);
   // Probes delivered since the last rebuild are scanned by every query: keep that tail short.
-  if (probes_.size() - index_.size() > kUnindexedTail) reindex();
+  // The far field holds every probe at once (its sums for the new one start at the next
+  // update(), when its fade-in starts).
+  if (probes_.size() - index_.size() > kUnindexedTail) {
+    reindex();
+  } else {
+    far_.append(q.position);
+  }
 }
 
 void DemandPlanner::update(const FrameContext& ctx) {
@@ -774,6 +781,8 @@ void DemandPlanner::update(const FrameContext& ctx) {
         probes_.end());
     reindex();
   }
+  // Presences and values moved with the clock and the light: the far field's sums follow.
+  fill_far_field();
 }
 
 bool DemandPlanner::gone(const Probe& q) const {
@@ -792,11 +801,11 @@ PlannerStats DemandPlanner::stats() const {
   // format rounds values, the layout stays), the pool of fading and lamp sets, the index, the
   // pending captures (std::map nodes: about 4 pointers of overhead each) and the receivers.
   const std::size_t per_pending = sizeof(Pending) + sizeof(std::uint64_t) + 4 * sizeof(void*);
-  s.bytes = static_cast<std::int64_t>(probes_.size() * sizeof(Probe) +
-                                      pool_.sets.size() * sizeof(Sh9Rgb) +
-                                      pool_.free.size() * sizeof(std::int32_t) + index_.bytes() +
-                                      (planned_.size() + in_flight_.size()) * per_pending +
-                                      receivers_.size() * sizeof(ReceiverView));
+  s.bytes = static_cast<std::int64_t>(
+      probes_.size() * sizeof(Probe) + pool_.sets.size() * sizeof(Sh9Rgb) +
+      pool_.free.size() * sizeof(std::int32_t) + index_.bytes() + far_.bytes() +
+      (planned_.size() + in_flight_.size()) * per_pending +
+      receivers_.size() * sizeof(ReceiverView));
   return s;
 }
 

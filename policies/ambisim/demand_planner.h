@@ -32,6 +32,7 @@
 #include <map>
 #include <vector>
 
+#include "policies/ambisim/far_field.h"
 #include "policies/ambisim/probe_index.h"
 #include "policies/core/coefficient_format.h"
 #include "policies/core/planner_info.h"
@@ -59,9 +60,9 @@ class DemandPlanner final : public Planner {
   // The same lookup by a linear scan over every probe, without the index: the reference the
   // index is tested against (equal to 1e-6) and the naive path of the benchmarks.
   LookupResult lookup_reference(const glm::dvec3& p) const;
-  // Whether a lookup at p mixes in the tail (its bumps weigh under kBumpConfidence): the slow
-  // path, a linear scan over every probe. For the benchmarks' profile.
-  bool lookup_uses_tail(const glm::dvec3& p) const;
+  // Whether a lookup at p mixes in the far field (its bumps weigh under kBumpConfidence). For
+  // the benchmarks' profile.
+  bool lookup_uses_far_field(const glm::dvec3& p) const;
   void set_receivers(const std::vector<ReceiverView>& receivers) override;
   void describe_nodes(std::vector<ProbeNodeView>& out) const override;
 
@@ -129,8 +130,14 @@ class DemandPlanner final : public Planner {
   LookupResult lookup_with(const glm::dvec3& p, bool reference) const;
   // Faded out: weighs nothing, waits to be dropped from probes_.
   bool gone(const Probe& q) const;
-  // Rebuilds the index over every probe (after the set changed).
+  // Rebuilds the index and the far field over every probe (after the set changed).
   void reindex();
+  // A probe's far-field sums now: its presence w, w x what it shows, w x its data time.
+  void add_far_sums(std::size_t i, FarField::Sums& s) const;
+  // The far field's sums from the probes' presences and values now (after each update()).
+  void fill_far_field();
+  // FarField::evaluate by its reference scan over every probe (lookup_reference's far field).
+  bool evaluate_far_field_reference(const glm::dvec3& p, FarField::Answer& out) const;
   // Distance from c to the nearest probe or pending capture, and the local detail factor.
   double nearest_distance(const glm::dvec3& c, double* detail) const;
   // The probe's value at the lamps' current level (its lamp layer added).
@@ -184,6 +191,7 @@ class DemandPlanner final : public Planner {
   std::vector<Probe> probes_;  // in delivery order
   SetPool pool_;
   ProbeIndex index_;  // over probes_[0, index_.size()); later ones are scanned
+  FarField far_;      // over every probe, its sums as of the last update()
   std::map<std::uint64_t, Pending> planned_;  // returned by plan(), not yet started
   std::map<std::uint64_t, Pending> in_flight_;
 };

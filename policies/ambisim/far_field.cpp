@@ -1,0 +1,128 @@
+#include "policies/ambisim/far_field.h"
+
+#include <algorithm>
+
+namespace ambisim {
+namespace {
+
+constexpr int kCoordLimit = 1 << 20;
+constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+
+}  // namespace
+
+glm::ivec3 FarField::base_cell(const glm::dvec3& x) {
+  glm::ivec3 c;
+  for (int a = 0; a < 3; ++a) {
+    const double v = std::floor(x[a] * (1.0 / kBaseCellM));
+    c[a] = !(v > -kCoordLimit)    ? -kCoordLimit
+           : v >= kCoordLimit - 1 ? kCoordLimit - 1
+                                  : static_cast<int>(v);
+  }
+  return c;
+}
+
+std::uint64_t FarField::pack(const glm::ivec3& c) {
+  constexpr std::uint64_t kMask = (std::uint64_t{1} << 21) - 1;
+  const auto u = [](int v) { return static_cast<std::uint64_t>(v + kCoordLimit) & kMask; };
+  return u(c.x) | (u(c.y) << 21) | (u(c.z) << 42);
+}
+
+std::size_t FarField::hash(std::uint64_t key) {
+  key ^= key >> 29;
+  key *= 0xbf58476d1ce4e5b9ULL;
+  key ^= key >> 32;
+  return static_cast<std::size_t>(key);
+}
+
+std::int32_t FarField::Level::find(std::uint64_t key) const {
+  if (keys.empty()) return -1;
+  const std::size_t mask = keys.size() - 1;
+  for (std::size_t i = hash(key) & mask;; i = (i + 1) & mask) {
+    if (keys[i] == key) return index[i];
+    if (keys[i] == kEmpty) return -1;
+  }
+}
+
+void FarField::Level::grow() {
+  const std::size_t capacity = std::max<std::size_t>(16, 2 * keys.size());
+  keys.assign(capacity, kEmpty);
+  index.assign(capacity, -1);
+  const std::size_t mask = capacity - 1;
+  for (std::size_t c = 0; c < cell_keys.size(); ++c) {
+    std::size_t i = hash(cell_keys[c]) & mask;
+    while (keys[i] != kEmpty) i = (i + 1) & mask;
+    keys[i] = cell_keys[c];
+    index[i] = static_cast<std::int32_t>(c);
+  }
+}
+
+std::int32_t FarField::Level::find_or_insert(std::uint64_t key, bool* inserted) {
+  *inserted = false;
+  // Load at most one half: a probe sequence is short.
+  if (2 * (cell_keys.size() + 1) > keys.size()) grow();
+  const std::size_t mask = keys.size() - 1;
+  std::size_t i = hash(key) & mask;
+  for (; keys[i] != kEmpty; i = (i + 1) & mask) {
+    if (keys[i] == key) return index[i];
+  }
+  keys[i] = key;
+  index[i] = static_cast<std::int32_t>(cells.size());
+  cells.emplace_back();
+  cell_keys.push_back(key);
+  parent.push_back(-1);
+  *inserted = true;
+  return index[i];
+}
+
+std::int32_t FarField::insert(int level, const glm::ivec3& c) {
+  Level& l = levels_[static_cast<std::size_t>(level)];
+  bool inserted = false;
+  const std::int32_t cell = l.find_or_insert(pack(c), &inserted);
+  if (inserted && level + 1 < kLevels) {
+    const std::int32_t up = insert(level + 1, c >> 1);
+    levels_[static_cast<std::size_t>(level)].parent[static_cast<std::size_t>(cell)] = up;
+  }
+  return cell;
+}
+
+void FarField::build(std::span<const glm::dvec3> positions) {
+  for (Level& l : levels_) l = Level{};
+  cell_of_slot_.clear();
+  cell_of_slot_.reserve(positions.size());
+  total_ = Sums{};
+  for (const auto& x : positions) append(x);
+}
+
+void FarField::append(const glm::dvec3& position) {
+  cell_of_slot_.push_back(insert(0, base_cell(position)));
+}
+
+bool FarField::evaluate(const glm::dvec3& p, Answer& out) const {
+  auto gather = [&](int k, const glm::ivec3& c0, const double* w8, Gathered& s) {
+    const Level& level = levels_[static_cast<std::size_t>(k)];
+    const int lo = -kCoordLimit >> k, hi = (kCoordLimit - 1) >> k;
+    for (int n = 0; n < 8; ++n) {
+      const glm::ivec3 c = c0 + glm::ivec3(n & 1, (n >> 1) & 1, (n >> 2) & 1);
+      if (c.x < lo || c.x > hi || c.y < lo || c.y > hi || c.z < lo || c.z > hi) continue;
+      const std::int32_t i = level.find(pack(c));
+      if (i < 0) continue;
+      const Sums& cell = level.cells[static_cast<std::size_t>(i)];
+      s.sh += cell.sh * static_cast<float>(w8[n]);
+      s.weight += w8[n] * cell.weight;
+      s.time += w8[n] * cell.time;
+    }
+  };
+  return blend(p, gather, total_, out);
+}
+
+std::size_t FarField::bytes() const {
+  std::size_t b = cell_of_slot_.capacity() * sizeof(std::int32_t);
+  for (const Level& l : levels_) {
+    b += l.keys.capacity() * sizeof(std::uint64_t) + l.index.capacity() * sizeof(std::int32_t) +
+         l.cells.capacity() * sizeof(Sums) + l.cell_keys.capacity() * sizeof(std::uint64_t) +
+         l.parent.capacity() * sizeof(std::int32_t);
+  }
+  return b;
+}
+
+}  // namespace ambisim
