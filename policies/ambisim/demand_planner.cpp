@@ -104,6 +104,11 @@ PlannerInfo DemandPlanner::info() {
                  "the kernel of the first version: a faint 1e-4 / (1 + u^4) tail beyond the "
                  "bump, so every probe contributes everywhere and a lookup scans all of them "
                  "(no index); kept to measure what the compact kernel costs"),
+      choice_param("far_field", "pyramid", {"pyramid", "scan"},
+                   "beyond the bumps' reach: `pyramid`, the pull-push far field (a few cells "
+                   "per level, whatever the number of probes); `scan`, the previous version's "
+                   "faint tail 1 / (1 + u^4) of every probe, a linear scan (fewer pops where "
+                   "probes churn, docs/PERFORMANCE.md section 6)"),
       bool_param("lamp_layer", true,
                  "near street lamps, capture their light as a second, additive set scaled by "
                  "the lamps' state (12 faces a capture): a switch costs no recapture")};
@@ -139,6 +144,7 @@ DemandPlanner::DemandPlanner(const PlannerParams& params)
       learn_(params.boolean("learn_sensitivity")),
       lamp_layer_(params.boolean("lamp_layer")),
       kernel_tail_(params.boolean("kernel_tail")),
+      far_scan_(params.choice("far_field") == "scan"),
       default_sh_(default_ambient_sh()) {
   prediction_.enabled = true;
   prediction_.lookahead_s = params.number("lookahead_s");
@@ -315,7 +321,9 @@ bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* 
   FarField::Answer far;
   // The far field's sums are those of the last update(): a probe delivered since (present at
   // once only with fade_s = 0) is in the bumps alone until then.
-  if (alpha < 1.0 && (reference ? evaluate_far_field_reference(p, far) : far_.evaluate(p, far))) {
+  if (alpha < 1.0 && (far_scan_   ? scan_tail(p, far)
+                      : reference ? evaluate_far_field_reference(p, far)
+                                  : far_.evaluate(p, far))) {
     // The bump contributors keep their shares of the mix; the far field's are not probes.
     const double a = total > 0.0 ? alpha / total : 0.0;  // per unit of bump weight
     const float b = static_cast<float>(1.0 - alpha);
@@ -434,9 +442,35 @@ void DemandPlanner::add_far_sums(std::size_t i, FarField::Sums& s) const {
   s.time += f * q.data_time;
 }
 
+bool DemandPlanner::scan_tail(const glm::dvec3& p, FarField::Answer& out) const {
+  // Every present probe, weighted 1 / (1 + u^4) (u = distance over its support radius): the
+  // nearest dominate, as a smooth nearest-probe answer.
+  Sh9Rgb sum;
+  double total = 0.0, time = 0.0, closest2 = std::numeric_limits<double>::infinity();
+  for (const Probe& q : probes_) {
+    const double f = presence(q);
+    if (f <= 0.0) continue;
+    const glm::dvec3 v = q.position - p;
+    const double d2 = glm::dot(v, v);
+    const double r = support_radius(q);
+    const double u2 = d2 / (r * r);
+    const double t = f / (1.0 + u2 * u2);
+    add_shown(q, static_cast<float>(t), sum);
+    total += t;
+    time += t * q.data_time;
+    closest2 = std::min(closest2, d2);
+  }
+  if (total <= 0.0) return false;
+  out.sh = sum * static_cast<float>(1.0 / total);
+  out.data_time = time / total;
+  out.cell_m = std::sqrt(closest2);  // twice this is the resolution reported
+  return true;
+}
+
 void DemandPlanner::fill_far_field() {
-  // The old kernel's tail reaches everywhere: it never asks the far field.
-  if (kernel_tail_) return;
+  // The old kernel's tail reaches everywhere, and the scan needs no sums: neither asks the
+  // far field.
+  if (kernel_tail_ || far_scan_) return;
   far_.fill([this](std::size_t i, FarField::Sums& s) { add_far_sums(i, s); });
 }
 

@@ -136,6 +136,8 @@ class DemandPlanner final : public Planner {
   void add_far_sums(std::size_t i, FarField::Sums& s) const;
   // The far field's sums from the probes' presences and values now (after each update()).
   void fill_far_field();
+  // far_field = scan: the faint tail of every probe, 1 / (1 + u^4), normalised (a linear scan).
+  bool scan_tail(const glm::dvec3& p, FarField::Answer& out) const;
   // FarField::evaluate by its reference scan over every probe (lookup_reference's far field).
   bool evaluate_far_field_reference(const glm::dvec3& p, FarField::Answer& out) const;
   // Distance from c to the nearest probe or pending capture, and the local detail factor.
@@ -173,6 +175,7 @@ class DemandPlanner final : public Planner {
   bool learn_;
   bool lamp_layer_;  // the parameter: lamp layers where the world has lamps
   bool kernel_tail_;
+  bool far_scan_;  // far_field = scan: the tail of every probe instead of the pyramid
   Sh9Rgb default_sh_;
 
   // The world's lamps (from the first frame's context).
