@@ -60,7 +60,7 @@ class DemandPlanner final : public Planner {
   // The same lookup by a linear scan over every probe, without the index: the reference the
   // index is tested against (equal to 1e-6) and the naive path of the benchmarks.
   LookupResult lookup_reference(const glm::dvec3& p) const;
-  // Whether a lookup at p mixes in the far field (its bumps weigh under kBumpConfidence). For
+  // Whether a lookup at p mixes in the far field (its bumps weigh under bump_confidence()). For
   // the benchmarks' profile.
   bool lookup_uses_far_field(const glm::dvec3& p) const;
   void set_receivers(const std::vector<ReceiverView>& receivers) override;
@@ -136,6 +136,8 @@ class DemandPlanner final : public Planner {
   void add_far_sums(std::size_t i, FarField::Sums& s) const;
   // The far field's sums from the probes' presences and values now (after each update()).
   void fill_far_field();
+  // The bump weight below which the far field is mixed in (alpha = weight / this).
+  double bump_confidence() const;
   // far_field = scan: the faint tail of every probe, 1 / (1 + u^4), normalised (a linear scan).
   bool scan_tail(const glm::dvec3& p, FarField::Answer& out) const;
   // FarField::evaluate by its reference scan over every probe (lookup_reference's far field).

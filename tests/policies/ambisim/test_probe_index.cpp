@@ -155,6 +155,6 @@ TEST_CASE("ambisim's indexed lookups equal its linear scan, in and beyond the wo
   // of their reach, and the far field alone (at least the 12 points far outside the world).
   INFO("far field alone " << far_only << ", mixed " << mixed << ", bumps " << blended);
   CHECK(far_only >= 12);
-  CHECK(mixed >= 20);
-  CHECK(blended > 200);
+  CHECK(mixed >= 100);
+  CHECK(blended >= 50);
 }
