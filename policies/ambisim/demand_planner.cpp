@@ -436,8 +436,10 @@ void DemandPlanner::reindex() {
     radii[i] = support_radius(probes_[i]);
   }
   index_.build(positions, radii);
-  far_.build(positions);
-  fill_far_field();
+  if (uses_pyramid()) {
+    far_.build(positions);
+    fill_far_field();
+  }
 }
 
 void DemandPlanner::add_far_sums(std::size_t i, FarField::Sums& s) const {
@@ -479,9 +481,7 @@ bool DemandPlanner::scan_tail(const glm::dvec3& p, FarField::Answer& out) const 
 }
 
 void DemandPlanner::fill_far_field() {
-  // The old kernel's tail reaches everywhere, and the scan needs no sums: neither asks the
-  // far field.
-  if (kernel_tail_ || far_scan_) return;
+  if (!uses_pyramid()) return;
   far_.fill([this](std::size_t i, FarField::Sums& s) { add_far_sums(i, s); });
 }
 
@@ -752,7 +752,7 @@ void DemandPlanner::deliver(const FinishedProbe& probe) {
   // update(), when its fade-in starts).
   if (probes_.size() - index_.size() > kUnindexedTail) {
     reindex();
-  } else {
+  } else if (uses_pyramid()) {
     far_.append(q.position);
   }
 }

@@ -136,6 +136,9 @@ class DemandPlanner final : public Planner {
   void add_far_sums(std::size_t i, FarField::Sums& s) const;
   // The far field's sums from the probes' presences and values now (after each update()).
   void fill_far_field();
+  // Whether lookups read the pyramid (not with the old kernel, whose tail reaches everywhere,
+  // nor with far_field = scan): only then is it built and filled.
+  bool uses_pyramid() const { return !kernel_tail_ && !far_scan_; }
   // The bump weight below which the far field is mixed in (alpha = weight / this).
   double bump_confidence() const;
   // far_field = scan: the faint tail of every probe, 1 / (1 + u^4), normalised (a linear scan).
