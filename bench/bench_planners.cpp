@@ -400,8 +400,8 @@ void BM_Frame(benchmark::State& state, const std::string& planner, bool naive) {
   set_naive(d.planner(), false);
 }
 
-// ambisim's index path alone: 4096 points within 1 m of its live probes (seed 9), where the
-// bumps cover every lookup (far_share 0), on the same filled planner as BM_Lookup.
+// ambisim near its probes: 4096 points within 1 m of its live probes (seed 9), where the bumps
+// answer almost alone (far_share in the counters), on the same filled planner as BM_Lookup.
 void BM_LookupNearProbes(benchmark::State& state, const std::string& planner) {
   const std::int64_t n = state.range(0);
   Filled& f = filled(planner, n);

@@ -72,7 +72,7 @@ def table(benchmarks):
          f"**{fmt_time(ns(look[10000]))}** ({live(look[10000])} live; {far(look[10000])} of the "
          f"points mix in the far field)", fmt_time(ns(ref[10000])), "≤ 150 ns",
          ns(look[10000]) <= 150),
-        ("lookup at 1e4, points within 1 m of a probe (the index path alone)",
+        ("lookup at 1e4, points within 1 m of a probe",
          f"**{fmt_time(ns(near[10000]))}** ({live(near[10000])} live; far field {far(near[10000])}); "
          f"{fmt_time(ns(near[1000]))} at {live(near[1000])}, {fmt_time(ns(near[100000]))} at "
          f"{live(near[100000])}", "", "≤ 150 ns", ns(near[10000]) <= 150),

@@ -5,8 +5,8 @@
 namespace ambisim {
 namespace {
 
-constexpr int kCoordLimit = 1 << 20;
-constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+constexpr int kCoordLimit = kCellCoordLimit;
+constexpr std::uint64_t kEmpty = kEmptyCellKey;
 
 }  // namespace
 
@@ -21,23 +21,12 @@ glm::ivec3 FarField::base_cell(const glm::dvec3& x) {
   return c;
 }
 
-std::uint64_t FarField::pack(const glm::ivec3& c) {
-  constexpr std::uint64_t kMask = (std::uint64_t{1} << 21) - 1;
-  const auto u = [](int v) { return static_cast<std::uint64_t>(v + kCoordLimit) & kMask; };
-  return u(c.x) | (u(c.y) << 21) | (u(c.z) << 42);
-}
-
-std::size_t FarField::hash(std::uint64_t key) {
-  key ^= key >> 29;
-  key *= 0xbf58476d1ce4e5b9ULL;
-  key ^= key >> 32;
-  return static_cast<std::size_t>(key);
-}
+std::uint64_t FarField::pack(const glm::ivec3& c) { return pack_cell(c.x, c.y, c.z); }
 
 std::int32_t FarField::Level::find(std::uint64_t key) const {
   if (keys.empty()) return -1;
   const std::size_t mask = keys.size() - 1;
-  for (std::size_t i = hash(key) & mask;; i = (i + 1) & mask) {
+  for (std::size_t i = hash_cell_key(key) & mask;; i = (i + 1) & mask) {
     if (keys[i] == key) return index[i];
     if (keys[i] == kEmpty) return -1;
   }
@@ -49,7 +38,7 @@ void FarField::Level::grow() {
   index.assign(capacity, -1);
   const std::size_t mask = capacity - 1;
   for (std::size_t c = 0; c < cell_keys.size(); ++c) {
-    std::size_t i = hash(cell_keys[c]) & mask;
+    std::size_t i = hash_cell_key(cell_keys[c]) & mask;
     while (keys[i] != kEmpty) i = (i + 1) & mask;
     keys[i] = cell_keys[c];
     index[i] = static_cast<std::int32_t>(c);
@@ -61,7 +50,7 @@ std::int32_t FarField::Level::find_or_insert(std::uint64_t key, bool* inserted) 
   // Load at most one half: a probe sequence is short.
   if (2 * (cell_keys.size() + 1) > keys.size()) grow();
   const std::size_t mask = keys.size() - 1;
-  std::size_t i = hash(key) & mask;
+  std::size_t i = hash_cell_key(key) & mask;
   for (; keys[i] != kEmpty; i = (i + 1) & mask) {
     if (keys[i] == key) return index[i];
   }

@@ -1,7 +1,7 @@
 #pragma once
-// The ambisim planner's far field: what a lookup answers where no probe's bump reaches (about
-// 1.24 spacings from every probe and beyond), continuous in space and in time, at a cost per
-// lookup that does not grow with the number of probes.
+// The ambisim planner's far field: what a lookup mixes in where the probes' bumps weigh little
+// (in a bump's outer half and beyond every bump), continuous in space and in time, at a cost
+// per lookup that does not grow with the number of probes.
 //
 // A pyramid of sparse grids filled by pull-push, the hole filling of Gortler et al., "The
 // Lumigraph" (SIGGRAPH 1996). Each probe adds its presence w, w x its coefficients and w x its
@@ -30,6 +30,7 @@
 #include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
+#include "policies/ambisim/cell_key.h"
 #include "sim/sh/sh9.h"
 
 namespace ambisim {
@@ -88,7 +89,6 @@ class FarField {
   // Level-0 cell coordinates of x (clamped); level k's are these shifted right by k.
   static glm::ivec3 base_cell(const glm::dvec3& x);
   static std::uint64_t pack(const glm::ivec3& c);
-  static std::size_t hash(std::uint64_t key);
   static constexpr double cell_m(int level) { return kBaseCellM * double(1 << level); }
   // Inserts the cell of level `level` at coordinates c (and its ancestors); its index.
   std::int32_t insert(int level, const glm::ivec3& c);
@@ -146,7 +146,8 @@ bool FarField::blend(const glm::dvec3& p, Gather&& gather, const Sums& total, An
     const glm::dvec3 f = g - lo;
     glm::ivec3 c0;
     for (int a = 0; a < 3; ++a) {
-      c0[a] = static_cast<int>(std::clamp(lo[a], -4.0 * (1 << 20), 4.0 * (1 << 20)));
+      // Far beyond the clamped cells: any value out of range finds no cell.
+      c0[a] = static_cast<int>(std::clamp(lo[a], -4.0 * kCellCoordLimit, 4.0 * kCellCoordLimit));
     }
     double w8[8];
     for (int n = 0; n < 8; ++n) {

@@ -29,6 +29,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "policies/ambisim/cell_key.h"
+
 namespace ambisim {
 
 class ProbeIndex {
@@ -72,8 +74,8 @@ class ProbeIndex {
     const Cell* find(std::uint64_t key) const;
     Cell* find_or_insert(std::uint64_t key);
   };
-  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
-  static constexpr int kCoordLimit = 1 << 20;
+  static constexpr std::uint64_t kEmpty = kEmptyCellKey;
+  static constexpr int kCoordLimit = kCellCoordLimit;
   static int cell_coord(double v, double inv_cell);
   static std::uint64_t pack(int x, int y, int z);
   static std::size_t hash(std::uint64_t key);
@@ -92,18 +94,9 @@ inline int ProbeIndex::cell_coord(double v, double inv_cell) {
   return static_cast<int>(c);
 }
 
-inline std::uint64_t ProbeIndex::pack(int x, int y, int z) {
-  constexpr std::uint64_t kMask = (std::uint64_t{1} << 21) - 1;
-  const auto u = [](int v) { return static_cast<std::uint64_t>(v + kCoordLimit) & kMask; };
-  return u(x) | (u(y) << 21) | (u(z) << 42);
-}
+inline std::uint64_t ProbeIndex::pack(int x, int y, int z) { return pack_cell(x, y, z); }
 
-inline std::size_t ProbeIndex::hash(std::uint64_t key) {
-  key ^= key >> 29;
-  key *= 0xbf58476d1ce4e5b9ULL;
-  key ^= key >> 32;
-  return static_cast<std::size_t>(key);
-}
+inline std::size_t ProbeIndex::hash(std::uint64_t key) { return hash_cell_key(key); }
 
 inline const ProbeIndex::Cell* ProbeIndex::Level::find(std::uint64_t key) const {
   const std::size_t mask = table.size() - 1;
