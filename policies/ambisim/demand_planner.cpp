@@ -226,6 +226,21 @@ void DemandPlanner::add_shown(const Probe& q, float w, Sh9Rgb& sum) const {
   }
 }
 
+DemandPlanner::Look DemandPlanner::look_of(const Probe& q) const {
+  Look l;
+  l.presence = static_cast<float>(presence(q));
+  const double fin = q.fade_out_start >= 0.0 || q.from < 0 ? 1.0 : fade_in_fraction(q);
+  l.scale = Rgb(static_cast<float>(fin));
+  if (rescale_) l.scale *= light_now_ / q.light;
+  l.plain = !(q.has_lamps() && lamp_level_ > 0.0) && fin >= 1.0;
+  return l;
+}
+
+void DemandPlanner::bake_looks() {
+  looks_.resize(probes_.size());
+  for (std::size_t i = 0; i < probes_.size(); ++i) looks_[i] = look_of(probes_[i]);
+}
+
 std::int32_t DemandPlanner::SetPool::add(const Sh9Rgb& sh) {
   if (!free.empty()) {
     const std::int32_t slot = free.back();
@@ -317,9 +332,32 @@ bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* 
     time_sum += w * q.data_time;
     keep({w, d2, i});
   };
+  // The indexed path reads the baked looks (the same terms as bump_weight and add_shown,
+  // rounded once to float); the reference recomputes them per probe.
+  auto visit_indexed = [&](std::size_t i) {
+    const Probe& q = probes_[i];
+    const glm::dvec3 v = q.position - p;
+    const double d2 = glm::dot(v, v);
+    const double r = support_radius(q);
+    if (d2 >= r * r) return;
+    const Look& l = looks_[i];
+    const double u2 = d2 / (r * r);
+    const double w = (1.0 - u2) * (1.0 - u2) * static_cast<double>(l.presence);
+    if (w <= 0.0) return;
+    if (l.plain) {
+      const Rgb k = l.scale * static_cast<float>(w);
+      for (int c = 0; c < kShCount; ++c)
+        sum.c[static_cast<std::size_t>(c)] += q.sh.c[static_cast<std::size_t>(c)] * k;
+    } else {
+      add_shown(q, static_cast<float>(w), sum);
+    }
+    total += w;
+    time_sum += w * q.data_time;
+    keep({w, d2, i});
+  };
   std::size_t scan_from = 0;
   if (!reference && !kernel_tail_) {
-    index_.for_each_candidate(p, visit);
+    index_.for_each_candidate(p, visit_indexed);
     scan_from = index_.size();
   }
   for (std::size_t i = scan_from; i < probes_.size(); ++i) visit(i);
@@ -436,6 +474,7 @@ void DemandPlanner::reindex() {
     radii[i] = support_radius(probes_[i]);
   }
   index_.build(positions, radii);
+  bake_looks();
   if (uses_pyramid()) {
     far_.build(positions);
     fill_far_field();
@@ -718,6 +757,9 @@ void DemandPlanner::deliver(const FinishedProbe& probe) {
       q->fade_in = static_cast<float>(std::clamp(log_change(was, current(*q)) / fade_rate_, fade_s_,
                                                  std::max(fade_s_, fade_max_s_)));
     }
+    // What lookups read of it changed now, not at the next update().
+    const auto slot = static_cast<std::size_t>(q - probes_.data());
+    if (slot < looks_.size()) looks_[slot] = look_of(*q);
     return;
   }
   Probe q;
@@ -826,7 +868,9 @@ void DemandPlanner::update(const FrameContext& ctx) {
         probes_.end());
     reindex();
   }
-  // Presences and values moved with the clock and the light: the far field's sums follow.
+  // Presences and values moved with the clock and the light: the looks and the far field's
+  // sums follow.
+  bake_looks();
   fill_far_field();
 }
 

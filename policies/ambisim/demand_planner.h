@@ -124,6 +124,19 @@ class DemandPlanner final : public Planner {
   double bump_weight(const Probe& q, double d2) const;
   // Adds w x what the probe shows now (shown(), without building it) to sum.
   void add_shown(const Probe& q, float w, Sh9Rgb& sum) const;
+  // What an indexed lookup reads of a probe besides its position, spacing and coefficients,
+  // fixed between update()s (the clock, the light and the lamps move only there): its
+  // presence, and the factor on its coefficients (rescale x fade-in share) when that is all it
+  // shows; `plain` false: it also shows a pool set (lamps, or the value it fades from), which
+  // the lookup adds by add_shown. Saves a lookup's contributors the fade and rescale divisions.
+  struct Look {
+    float presence = 0.0f;
+    Rgb scale{1.0f};
+    bool plain = true;
+  };
+  Look look_of(const Probe& q) const;
+  // looks_ from the probes (all of them: after update() and reindex()).
+  void bake_looks();
   // Interpolated coefficients at p from the current probes; false if none is present. The
   // index finds the probes (the linear scan when `reference`).
   bool interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* meta, bool reference) const;
@@ -197,6 +210,7 @@ class DemandPlanner final : public Planner {
   std::vector<ReceiverView> receivers_;
   std::uint64_t next_tag_ = 1;
   std::vector<Probe> probes_;  // in delivery order
+  std::vector<Look> looks_;    // beside probes_, as of the last update() or delivery
   SetPool pool_;
   ProbeIndex index_;  // over probes_[0, index_.size()); later ones are scanned
   FarField far_;      // over every probe, its sums as of the last update()

@@ -96,7 +96,7 @@ bool FarField::evaluate(const glm::dvec3& p, Answer& out) const {
       const std::int32_t i = level.find(pack(c));
       if (i < 0) continue;
       const Sums& cell = level.cells[static_cast<std::size_t>(i)];
-      s.sh += cell.sh * static_cast<float>(w8[n]);
+      sh_add_scaled(s.sh, cell.sh, static_cast<float>(w8[n]));
       s.weight += w8[n] * cell.weight;
       s.time += w8[n] * cell.time;
     }

@@ -160,13 +160,13 @@ bool FarField::blend(const glm::dvec3& p, Gather&& gather, const Sums& total, An
     if (out.cell_m == 0.0) out.cell_m = cell_m(k);
     const double a = std::min(1.0, s.weight / kConfidence);
     const double per = rest * a / s.weight;
-    acc += s.sh * static_cast<float>(per);
+    sh_add_scaled(acc, s.sh, static_cast<float>(per));
     time += s.time * per;
     rest *= 1.0 - a;
   }
   if (rest > 0.0) {
     const double per = rest / total.weight;
-    acc += total.sh * static_cast<float>(per);
+    sh_add_scaled(acc, total.sh, static_cast<float>(per));
     time += total.time * per;
     if (out.cell_m == 0.0) out.cell_m = cell_m(kLevels - 1) * 2.0;
   }

@@ -9,7 +9,7 @@ namespace ambisim {
 namespace {
 
 constexpr double kBaseCellM = 1.0;
-constexpr double kLevelRatio = 1.41421356237309504880;  // sqrt(2)
+constexpr double kLevelRatio = 2.0;  // probe_index.h says why not sqrt(2)
 
 // The level whose cell, kBaseCellM * kLevelRatio^level, is the smallest at least twice
 // `radius`: then a ball of that radius meets at most two cells per axis.
@@ -64,6 +64,7 @@ void ProbeIndex::build(std::span<const glm::dvec3> positions, std::span<const do
     level.inv_cell = 1.0 / level.cell_m;
     level.table.assign(std::bit_ceil(std::max<std::size_t>(2 * per_level[l], 8)), Cell{});
     level.slots.resize(per_level[l]);
+    level.reach.resize(per_level[l]);
     level.lo = glm::ivec3(kCoordLimit);
     level.hi = glm::ivec3(-kCoordLimit);
     levels_.push_back(std::move(level));
@@ -108,14 +109,23 @@ void ProbeIndex::build(std::span<const glm::dvec3> positions, std::span<const do
   for (std::size_t i = 0; i < positions.size(); ++i) {
     Level& level = levels_[level_index(i)];
     Cell* cell = level.find_or_insert(key_of[i]);
-    level.slots[cell->begin + cell->count++] = static_cast<std::uint32_t>(i);
+    const std::uint32_t at = cell->begin + cell->count++;
+    level.slots[at] = static_cast<std::uint32_t>(i);
+    const glm::dvec3& p = positions[i];
+    const glm::ivec3 c(cell_coord(p.x, level.inv_cell), cell_coord(p.y, level.inv_cell),
+                       cell_coord(p.z, level.inv_cell));
+    const double r = radii[i] + kReachMarginM;
+    level.reach[at] = {static_cast<float>(p.x - c.x * level.cell_m),
+                       static_cast<float>(p.y - c.y * level.cell_m),
+                       static_cast<float>(p.z - c.z * level.cell_m), static_cast<float>(r * r)};
   }
 }
 
 std::size_t ProbeIndex::bytes() const {
   std::size_t b = levels_.capacity() * sizeof(Level);
   for (const Level& level : levels_) {
-    b += level.table.capacity() * sizeof(Cell) + level.slots.capacity() * sizeof(std::uint32_t);
+    b += level.table.capacity() * sizeof(Cell) + level.slots.capacity() * sizeof(std::uint32_t) +
+         level.reach.capacity() * sizeof(Reach);
   }
   return b;
 }

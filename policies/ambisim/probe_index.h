@@ -6,18 +6,24 @@
 // Why levels: the supports span a factor of 3-5 (1.5 spacings, from 1.5 m refined spacing next
 // to the camera to 4.8 m at 160 m) and more with other parameters. One grid sized for the
 // largest support would hand a lookup near the camera three to four times the candidates. Each
-// probe goes into the level whose cell is the smallest of the geometric series 1 m * sqrt(2)^L
-// that is at least its diameter; a ball of that radius around a point then meets at most two
-// cells per axis (the point's and the neighbour on the side of the nearer face), so a lookup
-// reads 8 cells per occupied level (2-3 levels in practice).
+// probe goes into the level whose cell is the smallest of the geometric series 1 m * 2^L that is
+// at least its diameter; a ball of that radius around a point then meets at most two cells per
+// axis (the point's and the neighbour on the side of the nearer face), so a lookup reads 8 cells
+// per occupied level (2 in bench_planners' fill). Ratio 2 rather than sqrt(2): twice the
+// candidates per cell, which the float test below makes cheap, for half the levels and hash
+// finds (BM_Lookup/ambisim/10000 644 -> 603 ns).
 //
 // Each level is a flat open-addressing hash table of cells (power-of-two capacity, load at most
 // one half) holding ranges of one array of probe slots, built by a counting sort: O(n) to build,
-// no allocation per cell, and a cell read is one or two cache lines. The index is rebuilt when
-// the probe set changes (the planner does so once per frame at most; probes delivered between
+// no allocation per cell, and a cell read is one or two cache lines. Beside each slot the level
+// keeps its position relative to its cell's corner and its radius, in float (16 bytes): a lookup
+// tests its candidates there, streaming one cell's entries, and touches a probe's own record
+// only when its support holds the point (about one candidate in five passes). The index is rebuilt
+// when the probe set changes (the planner does so once per frame at most; probes delivered between
 // rebuilds are passed to queries as a short unindexed tail).
 //
-// Input ranges: positions finite; radii > 0 and finite. Points far outside every occupied cell
+// Input ranges: positions finite and within +-2^20 cells of the origin (1,000 km: the float
+// offsets of a clamped probe would be meaningless); radii > 0 and finite. Points far outside every occupied cell
 // (beyond the world) are fine: cell coordinates are clamped to +-2^20 cells, which only makes
 // a far point's candidates an empty set, and nearest() falls back to a scan of a level when its
 // shells would visit more cells than the level holds probes.
@@ -41,7 +47,8 @@ class ProbeIndex {
   std::size_t size() const { return size_; }
 
   // Calls visit(slot) for every slot whose radius may reach p: a superset of the slots with
-  // distance(p, position) < radius (the caller tests the distance). Each slot at most once.
+  // distance(p, position) < radius (the caller tests the distance exactly), tight to within
+  // kReachMarginM. Each slot at most once.
   template <class Visit>
   void for_each_candidate(const glm::dvec3& p, Visit&& visit) const;
 
@@ -65,16 +72,23 @@ class ProbeIndex {
     std::uint32_t begin = 0;
     std::uint32_t count = 0;
   };
+  // A slot's position relative to its cell's lower corner and its radius squared, widened by
+  // kReachMarginM: in float the offsets (< a few cells) are good to 1e-6 m, far inside it.
+  struct Reach {
+    float x, y, z, r2;
+  };
   struct Level {
     double cell_m = 1.0;
     double inv_cell = 1.0;
     std::vector<Cell> table;           // open addressing, capacity a power of two
     std::vector<std::uint32_t> slots;  // the level's slots, grouped by cell
+    std::vector<Reach> reach;          // beside slots
     glm::ivec3 lo{0}, hi{-1};          // bounds of the occupied cell coordinates
     const Cell* find(std::uint64_t key) const;
     Cell* find_or_insert(std::uint64_t key);
   };
   static constexpr std::uint64_t kEmpty = kEmptyCellKey;
+  static constexpr double kReachMarginM = 1e-4;
   static constexpr int kCoordLimit = kCellCoordLimit;
   static int cell_coord(double v, double inv_cell);
   static std::uint64_t pack(int x, int y, int z);
@@ -121,6 +135,24 @@ void ProbeIndex::visit_cell(const Level& level, int x, int y, int z, Visit&& vis
 
 template <class Visit>
 void ProbeIndex::for_each_candidate(const glm::dvec3& p, Visit&& visit) const {
+  auto visit_reaching = [&](const Level& level, int x, int y, int z) {
+    if (x < level.lo.x || x > level.hi.x || y < level.lo.y || y > level.hi.y || z < level.lo.z ||
+        z > level.hi.z) {
+      return;
+    }
+    const Cell* c = level.find(pack(x, y, z));
+    if (c == nullptr) return;
+    // p relative to the cell's corner, in double, then float: within a few cells of it.
+    const auto px = static_cast<float>(p.x - x * level.cell_m);
+    const auto py = static_cast<float>(p.y - y * level.cell_m);
+    const auto pz = static_cast<float>(p.z - z * level.cell_m);
+    const std::uint32_t* s = level.slots.data() + c->begin;
+    const Reach* r = level.reach.data() + c->begin;
+    for (std::uint32_t k = 0; k < c->count; ++k) {
+      const float dx = r[k].x - px, dy = r[k].y - py, dz = r[k].z - pz;
+      if (dx * dx + dy * dy + dz * dz < r[k].r2) visit(s[k]);
+    }
+  };
   for (const Level& level : levels_) {
     // The ball of radius <= cell / 2 around p meets the cell holding p and, per axis, the
     // neighbour on the side of the nearer face.
@@ -131,8 +163,7 @@ void ProbeIndex::for_each_candidate(const glm::dvec3& p, Visit&& visit) const {
     const int dy = fy - std::floor(fy) < 0.5 ? -1 : 1;
     const int dz = fz - std::floor(fz) < 0.5 ? -1 : 1;
     for (int k = 0; k < 8; ++k) {
-      visit_cell(level, x + ((k & 1) ? dx : 0), y + ((k & 2) ? dy : 0), z + ((k & 4) ? dz : 0),
-                 visit);
+      visit_reaching(level, x + ((k & 1) ? dx : 0), y + ((k & 2) ? dy : 0), z + ((k & 4) ? dz : 0));
     }
   }
 }

@@ -33,16 +33,6 @@ ShBasis sh_basis(const glm::dvec3& d) {
           kShY22 * (x * x - y * y)};
 }
 
-Sh9Rgb& Sh9Rgb::operator+=(const Sh9Rgb& o) {
-  for (int k = 0; k < kShCount; ++k) c[k] += o.c[k];
-  return *this;
-}
-
-Sh9Rgb& Sh9Rgb::operator*=(float s) {
-  for (auto& v : c) v *= s;
-  return *this;
-}
-
 Sh9Rgb sh_lerp(const Sh9Rgb& a, const Sh9Rgb& b, float t) {
   Sh9Rgb r;
   for (int k = 0; k < kShCount; ++k) r.c[k] = a.c[k] + t * (b.c[k] - a.c[k]);

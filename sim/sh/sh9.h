@@ -48,13 +48,29 @@ ShBasis sh_basis(const glm::dvec3& unit_dir);
 struct Sh9Rgb {
   std::array<Rgb, kShCount> c{};
 
-  Sh9Rgb& operator+=(const Sh9Rgb& o);
-  Sh9Rgb& operator*=(float s);
+  // Inline: lookups sum tens of these per call (an out-of-line call and a temporary per term
+  // cost a third of a far-field lookup).
+  Sh9Rgb& operator+=(const Sh9Rgb& o) {
+    for (int k = 0; k < kShCount; ++k)
+      c[static_cast<std::size_t>(k)] += o.c[static_cast<std::size_t>(k)];
+    return *this;
+  }
+  Sh9Rgb& operator*=(float s) {
+    for (auto& v : c) v *= s;
+    return *this;
+  }
   friend Sh9Rgb operator+(Sh9Rgb a, const Sh9Rgb& b) { return a += b; }
   friend Sh9Rgb operator*(Sh9Rgb a, float s) { return a *= s; }
   friend Sh9Rgb operator*(float s, Sh9Rgb a) { return a *= s; }
   friend bool operator==(const Sh9Rgb&, const Sh9Rgb&) = default;
 };
+
+// acc += w x x, without a temporary (the same float operations as acc += x * w).
+inline void sh_add_scaled(Sh9Rgb& acc, const Sh9Rgb& x, float w) {
+  for (int k = 0; k < kShCount; ++k) {
+    acc.c[static_cast<std::size_t>(k)] += x.c[static_cast<std::size_t>(k)] * w;
+  }
+}
 
 // a + t (b - a), t in [0, 1].
 Sh9Rgb sh_lerp(const Sh9Rgb& a, const Sh9Rgb& b, float t);
