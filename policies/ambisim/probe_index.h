@@ -23,10 +23,10 @@
 // rebuilds are passed to queries as a short unindexed tail).
 //
 // Input ranges: positions finite and within +-2^20 cells of the origin (1,000 km: the float
-// offsets of a clamped probe would be meaningless); radii > 0 and finite. Points far outside every occupied cell
-// (beyond the world) are fine: cell coordinates are clamped to +-2^20 cells, which only makes
-// a far point's candidates an empty set, and nearest() falls back to a scan of a level when its
-// shells would visit more cells than the level holds probes.
+// offsets of a clamped probe would be meaningless); radii > 0 and finite. Points far outside every
+// occupied cell (beyond the world) are fine: cell coordinates are clamped to +-2^20 cells, which
+// only makes a far point's candidates an empty set, and nearest() falls back to a scan of a level
+// when its shells would visit more cells than the level holds probes.
 #include <cmath>
 #include <cstdint>
 #include <limits>
