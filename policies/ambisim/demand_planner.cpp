@@ -320,6 +320,12 @@ bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* 
   };
   double total = 0.0, time_sum = 0.0;
   Sh9Rgb sum;
+  // A contributor's weight into the totals and the top 8 (its value is already in sum).
+  auto take = [&](std::size_t i, double w, double d2) {
+    total += w;
+    time_sum += w * probes_[i].data_time;
+    keep({w, d2, i});
+  };
   auto visit = [&](std::size_t i) {
     const Probe& q = probes_[i];
     const glm::dvec3 v = q.position - p;
@@ -328,9 +334,7 @@ bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* 
     if (w <= 0.0) return;
     // The value itself also enters gradually, from what was shown here before.
     add_shown(q, static_cast<float>(w), sum);
-    total += w;
-    time_sum += w * q.data_time;
-    keep({w, d2, i});
+    take(i, w, d2);
   };
   // The indexed path reads the baked looks (the same terms as bump_weight and add_shown,
   // rounded once to float); the reference recomputes them per probe.
@@ -341,8 +345,7 @@ bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* 
     const double r = support_radius(q);
     if (d2 >= r * r) return;
     const Look& l = looks_[i];
-    const double u2 = d2 / (r * r);
-    const double w = (1.0 - u2) * (1.0 - u2) * static_cast<double>(l.presence);
+    const double w = kernel(q, d2) * static_cast<double>(l.presence);
     if (w <= 0.0) return;
     if (l.plain) {
       const Rgb k = l.scale * static_cast<float>(w);
@@ -351,9 +354,7 @@ bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* 
     } else {
       add_shown(q, static_cast<float>(w), sum);
     }
-    total += w;
-    time_sum += w * q.data_time;
-    keep({w, d2, i});
+    take(i, w, d2);
   };
   std::size_t scan_from = 0;
   if (!reference && !kernel_tail_) {

@@ -71,7 +71,7 @@ void ProbeIndex::build(std::span<const glm::dvec3> positions, std::span<const do
   }
   // Counting sort: count per cell, prefix sums, then place (slots keep ascending order within a
   // cell, so visits are deterministic).
-  std::vector<std::uint64_t> key_of(positions.size());
+  std::vector<glm::ivec3> cell_of(positions.size());
   auto level_index = [&](std::size_t i) {
     return static_cast<std::size_t>(dense[static_cast<std::size_t>(level_of[i])]);
   };
@@ -82,8 +82,8 @@ void ProbeIndex::build(std::span<const glm::dvec3> positions, std::span<const do
                        cell_coord(p.z, level.inv_cell));
     level.lo = glm::min(level.lo, c);
     level.hi = glm::max(level.hi, c);
-    key_of[i] = pack(c.x, c.y, c.z);
-    ++level.find_or_insert(key_of[i])->count;
+    cell_of[i] = c;
+    ++level.find_or_insert(pack(c.x, c.y, c.z))->count;
   }
   for (Level& level : levels_) {
     // Sized for the probes, the table may hold far fewer cells: shrink it to a load of at most
@@ -108,12 +108,11 @@ void ProbeIndex::build(std::span<const glm::dvec3> positions, std::span<const do
   }
   for (std::size_t i = 0; i < positions.size(); ++i) {
     Level& level = levels_[level_index(i)];
-    Cell* cell = level.find_or_insert(key_of[i]);
+    const glm::ivec3& c = cell_of[i];
+    Cell* cell = level.find_or_insert(pack(c.x, c.y, c.z));
     const std::uint32_t at = cell->begin + cell->count++;
     level.slots[at] = static_cast<std::uint32_t>(i);
     const glm::dvec3& p = positions[i];
-    const glm::ivec3 c(cell_coord(p.x, level.inv_cell), cell_coord(p.y, level.inv_cell),
-                       cell_coord(p.z, level.inv_cell));
     const double r = radii[i] + kReachMarginM;
     level.reach[at] = {static_cast<float>(p.x - c.x * level.cell_m),
                        static_cast<float>(p.y - c.y * level.cell_m),

@@ -94,6 +94,8 @@ class ProbeIndex {
   static std::uint64_t pack(int x, int y, int z);
   static std::size_t hash(std::uint64_t key);
 
+  // The cell at (x, y, z), or nullptr (outside the occupied box or empty).
+  static const Cell* find_cell(const Level& level, int x, int y, int z);
   template <class Visit>
   static void visit_cell(const Level& level, int x, int y, int z, Visit&& visit);
 
@@ -121,13 +123,17 @@ inline const ProbeIndex::Cell* ProbeIndex::Level::find(std::uint64_t key) const 
   }
 }
 
-template <class Visit>
-void ProbeIndex::visit_cell(const Level& level, int x, int y, int z, Visit&& visit) {
+inline const ProbeIndex::Cell* ProbeIndex::find_cell(const Level& level, int x, int y, int z) {
   if (x < level.lo.x || x > level.hi.x || y < level.lo.y || y > level.hi.y || z < level.lo.z ||
       z > level.hi.z) {
-    return;
+    return nullptr;
   }
-  const Cell* c = level.find(pack(x, y, z));
+  return level.find(pack(x, y, z));
+}
+
+template <class Visit>
+void ProbeIndex::visit_cell(const Level& level, int x, int y, int z, Visit&& visit) {
+  const Cell* c = find_cell(level, x, y, z);
   if (c == nullptr) return;
   const std::uint32_t* s = level.slots.data() + c->begin;
   for (std::uint32_t k = 0; k < c->count; ++k) visit(s[k]);
@@ -136,11 +142,7 @@ void ProbeIndex::visit_cell(const Level& level, int x, int y, int z, Visit&& vis
 template <class Visit>
 void ProbeIndex::for_each_candidate(const glm::dvec3& p, Visit&& visit) const {
   auto visit_reaching = [&](const Level& level, int x, int y, int z) {
-    if (x < level.lo.x || x > level.hi.x || y < level.lo.y || y > level.hi.y || z < level.lo.z ||
-        z > level.hi.z) {
-      return;
-    }
-    const Cell* c = level.find(pack(x, y, z));
+    const Cell* c = find_cell(level, x, y, z);
     if (c == nullptr) return;
     // p relative to the cell's corner, in double, then float: within a few cells of it.
     const auto px = static_cast<float>(p.x - x * level.cell_m);
