@@ -185,8 +185,35 @@ double DemandPlanner::presence(const Probe& q) const {
   return f;
 }
 
+Sh9Rgb DemandPlanner::stored(const Probe& q) const {
+  return q.full >= 0 ? pool_.sets[static_cast<std::size_t>(q.full)] : from_half(q.half);
+}
+
+void DemandPlanner::add_stored(const Probe& q, const Rgb& k, Sh9Rgb& sum) const {
+  if (q.full < 0) {
+    sh_add_scaled(sum, q.half, k);
+    return;
+  }
+  const Sh9Rgb& sh = pool_.sets[static_cast<std::size_t>(q.full)];
+  for (int i = 0; i < kShCount; ++i)
+    sum.c[static_cast<std::size_t>(i)] += sh.c[static_cast<std::size_t>(i)] * k;
+}
+
+void DemandPlanner::store(Probe& q, const Sh9Rgb& sh) {
+  const Sh9Rgb s = format_.store(sh);
+  if (format_.half) {
+    q.half = to_half(s);
+    return;
+  }
+  if (q.full >= 0) {
+    pool_.sets[static_cast<std::size_t>(q.full)] = s;
+  } else {
+    q.full = pool_.add(s);
+  }
+}
+
 Sh9Rgb DemandPlanner::current(const Probe& q) const {
-  Sh9Rgb now = q.sh;
+  Sh9Rgb now = stored(q);
   if (rescale_) {
     const Rgb k = light_now_ / q.light;
     for (auto& c : now.c) c *= k;
@@ -210,8 +237,7 @@ void DemandPlanner::add_shown(const Probe& q, float w, Sh9Rgb& sum) const {
   const float a = static_cast<float>(fin);
   Rgb k(w * a);
   if (rescale_) k *= light_now_ / q.light;
-  for (int i = 0; i < kShCount; ++i)
-    sum.c[static_cast<std::size_t>(i)] += q.sh.c[static_cast<std::size_t>(i)] * k;
+  add_stored(q, k, sum);
   if (q.has_lamps() && lamp_level_ > 0.0) {
     const float l = w * a * static_cast<float>(lamp_level_);
     const Sh9Rgb& lamps = pool_.sets[static_cast<std::size_t>(q.lamps)];
@@ -348,9 +374,7 @@ bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* 
     const double w = kernel(q, d2) * static_cast<double>(l.presence);
     if (w <= 0.0) return;
     if (l.plain) {
-      const Rgb k = l.scale * static_cast<float>(w);
-      for (int c = 0; c < kShCount; ++c)
-        sum.c[static_cast<std::size_t>(c)] += q.sh.c[static_cast<std::size_t>(c)] * k;
+      add_stored(q, l.scale * static_cast<float>(w), sum);
     } else {
       add_shown(q, static_cast<float>(w), sum);
     }
@@ -736,7 +760,7 @@ void DemandPlanner::deliver(const FinishedProbe& probe) {
     const Sh9Rgb was = shown(*q);
     pool_.release(q->from);
     q->from = pool_.add(was);
-    q->sh = format_.store(probe.sh);
+    store(*q, probe.sh);
     pool_.release(q->lamps);
     if (probe.has_lamp_layer) q->lamps = pool_.add(format_.store(probe.sh_lamps));
     q->data_time = probe.requested_time;
@@ -766,7 +790,7 @@ void DemandPlanner::deliver(const FinishedProbe& probe) {
   Probe q;
   q.tag = probe.tag;
   q.position = probe.position;
-  q.sh = format_.store(probe.sh);
+  store(q, probe.sh);
   if (probe.has_lamp_layer) q.lamps = pool_.add(format_.store(probe.sh_lamps));
   q.near_lamps = !lamps_.empty() && near_lamps(probe.position);
   q.spacing = static_cast<float>(it->second.spacing);
@@ -861,6 +885,7 @@ void DemandPlanner::update(const FrameContext& ctx) {
     if (!gone(q)) continue;
     pool_.release(q.from);
     pool_.release(q.lamps);
+    pool_.release(q.full);  // a gone probe weighs nothing: its set is never read again
     ++dead;
   }
   if (dead > kUnindexedTail) {
@@ -887,8 +912,8 @@ PlannerStats DemandPlanner::stats() const {
   PlannerStats s;
   s.live_probes = static_cast<std::int64_t>(
       std::count_if(probes_.begin(), probes_.end(), [&](const Probe& q) { return !gone(q); }));
-  // What is held, as held: the probes (their sets as 32-bit floats whatever the format: the
-  // format rounds values, the layout stays), the pool of fading and lamp sets, the index, the
+  // What is held, as held: the probes (their sets inline as fp16 bits, or in the pool as fp32),
+  // the pool of fp32, fading and lamp sets, the index, the
   // pending captures (std::map nodes: about 4 pointers of overhead each) and the receivers.
   const std::size_t per_pending = sizeof(Pending) + sizeof(std::uint64_t) + 4 * sizeof(void*);
   s.bytes = static_cast<std::int64_t>(
@@ -908,7 +933,7 @@ void DemandPlanner::describe_nodes(std::vector<ProbeNodeView>& out) const {
     v.depth = q.detail < 1.0 ? 1 : 0;
     v.has_data = true;
     v.age_s = now_ - q.data_time;
-    v.sh = q.sh;
+    v.sh = stored(q);
     out.push_back(v);
   }
   for (const auto& [tag, f] : in_flight_) {

@@ -35,6 +35,7 @@
 #include "policies/ambisim/far_field.h"
 #include "policies/ambisim/probe_index.h"
 #include "policies/core/coefficient_format.h"
+#include "policies/core/half_set.h"
 #include "policies/core/planner_info.h"
 #include "policies/core/planner_params.h"
 #include "policies/core/velocity_prediction.h"
@@ -72,28 +73,32 @@ class DemandPlanner final : public Planner {
   void set_budget(double faces_per_frame);
 
  private:
-  // 208 bytes: the set and what a lookup needs inline; the set a probe fades from and its lamp
-  // layer live in a pool, held only while fading and near lamps (memory per probe is a target).
+  // 160 bytes: what a lookup needs inline, the set as the format stores it (fp16 bits, the
+  // default; an fp32 set lives in the pool); the set a probe fades from and its lamp layer live
+  // in the pool too, held only while fading and near lamps (memory per probe is a target).
   struct Probe {
     std::uint64_t tag = 0;
     glm::dvec3 position{0.0};
-    Sh9Rgb sh;                // as stored (format applied)
-    Rgb light{1.0f};          // the scene's light level when it was captured (rescale)
-    float spacing = 0;        // the spacing it was placed for
-    float detail = 1;         // < 1 where the colour changes fast: neighbours come closer
-    float fade_in = 0;        // its fade-in duration (0 = at once)
-    float drift = 0;          // expected relative error since its data was captured
-    float sensitivity = 1;    // its light's change over the world's reported rate (learnt)
-    std::int32_t from = -1;   // pool slot: what lookups gave here before (while fading in)
-    std::int32_t lamps = -1;  // pool slot: the lamps at full power (as stored), if any
     double data_time = 0;
     double fade_in_start = -1;    // < 0: not started (starts at the first update after delivery)
     double fade_out_start = -1;   // >= 0: leaving
+    Rgb light{1.0f};              // the scene's light level when it was captured (rescale)
+    float spacing = 0;            // the spacing it was placed for
+    float detail = 1;             // < 1 where the colour changes fast: neighbours come closer
+    float fade_in = 0;            // its fade-in duration (0 = at once)
+    float drift = 0;              // expected relative error since its data was captured
+    float sensitivity = 1;        // its light's change over the world's reported rate (learnt)
+    std::int32_t from = -1;       // pool slot: what lookups gave here before (while fading in)
+    std::int32_t lamps = -1;      // pool slot: the lamps at full power (as stored), if any
+    std::int32_t full = -1;       // pool slot: its set, when the format is fp32
+    HalfSh9Rgb half;              // its set, when the format is fp16
     bool weight_fades_in = true;  // false after a refresh: only the value fades
     bool refreshing = false;      // a refresh capture for it is planned or in flight
     bool near_lamps = false;      // within the lamps' reach: their switching makes it stale
     bool has_lamps() const { return lamps >= 0; }
   };
+  // The memory target counts on it (bench_planners' bytes_per_probe).
+  static_assert(sizeof(Probe) <= 160, "a probe outgrew its 160 bytes");
   // Coefficient sets held apart from the probes, with slots reused in a fixed order.
   struct SetPool {
     std::vector<Sh9Rgb> sets;
@@ -111,6 +116,11 @@ class DemandPlanner final : public Planner {
     Rgb light{1.0f};               // the scene's light level when it was requested
   };
 
+  // The probe's set as stored (format applied), and sum += that set x k without building it.
+  Sh9Rgb stored(const Probe& q) const;
+  void add_stored(const Probe& q, const Rgb& k, Sh9Rgb& sum) const;
+  // Stores sh in the format's precision: inline as fp16 bits, or in the pool as fp32.
+  void store(Probe& q, const Sh9Rgb& sh);
   // How far a probe's fade-in has come, in [0, 1].
   double fade_in_fraction(const Probe& q) const;
   // Fade factor in [0, 1] of a probe at the current time (in and out).
