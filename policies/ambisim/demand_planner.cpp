@@ -492,6 +492,7 @@ void DemandPlanner::lookup_many(const LookupPoints& points, std::vector<LookupRe
 }
 
 void DemandPlanner::reindex() {
+  ++index_builds_;
   std::vector<glm::dvec3> positions(probes_.size());
   std::vector<double> radii(probes_.size());
   for (std::size_t i = 0; i < probes_.size(); ++i) {
@@ -563,6 +564,13 @@ double DemandPlanner::nearest_distance(const glm::dvec3& c, double* detail) cons
   std::int64_t n = index_.nearest(
       c, [&](std::uint32_t i) -> const glm::dvec3& { return probes_[i].position; },
       [&](std::uint32_t i) { return staying(i); }, &best);
+  return nearest_beyond_index(c, n, best, detail);
+}
+
+double DemandPlanner::nearest_beyond_index(const glm::dvec3& c, std::int64_t n, double best,
+                                           double* detail) const {
+  *detail = 1.0;
+  auto staying = [&](std::size_t i) { return probes_[i].fade_out_start < 0.0; };
   for (std::size_t i = index_.size(); i < probes_.size(); ++i) {
     if (!staying(i)) continue;
     const double d = glm::distance(probes_[i].position, c);
@@ -651,6 +659,7 @@ std::vector<CaptureRequest> DemandPlanner::plan(const FrameContext& ctx) {
   double u_refused = std::numeric_limits<double>::infinity();  // least urgency of those refused
   auto staying = [&](std::uint32_t i) { return probes_[i].fade_out_start < 0.0; };
   auto position_of = [&](std::uint32_t i) -> const glm::dvec3& { return probes_[i].position; };
+  nearest_memo_.resize(receivers_.size());
   for (std::size_t i = 0; i < receivers_.size(); ++i) {
     const ReceiverView& r = receivers_[i];
     const glm::dvec3 at = r.position + horizon * r.velocity;
@@ -658,12 +667,26 @@ std::vector<CaptureRequest> DemandPlanner::plan(const FrameContext& ctx) {
     const double d = focus_.distance(at);
     if (d > max_distance_) continue;
     const double spacing = required_spacing(d);
-    if (index_.any_within(at, 0.25 * spacing, position_of, staying)) {
+    NearestMemo& m = nearest_memo_[i];
+    if (!(m.id == r.id && m.at == at && m.build == index_builds_ && m.probe >= 0 &&
+          staying(static_cast<std::uint32_t>(m.probe)))) {
+      double ignored = 0.0;
+      m = {r.id, at, index_builds_, index_.nearest(at, position_of, staying, &ignored)};
+    }
+    // The nearest indexed probe's squared distance, as the index computes it: within a quarter
+    // spacing exactly when any staying indexed probe is (ProbeIndex::any_within).
+    double d2 = std::numeric_limits<double>::infinity();
+    if (m.probe >= 0) {
+      const glm::dvec3 v = probes_[static_cast<std::size_t>(m.probe)].position - at;
+      d2 = v.x * v.x + v.y * v.y + v.z * v.z;
+    }
+    const double quarter = 0.25 * spacing;
+    if (d2 <= quarter * quarter) {
       u_refused = std::min(u_refused, 0.5);  // its need is at most 0.25
       continue;
     }
     double detail = 1.0;
-    const double gap = nearest_distance(at, &detail);
+    const double gap = nearest_beyond_index(at, m.probe, std::sqrt(d2), &detail);
     const double need = by_need_ ? gap / (spacing * detail) : -to_camera;
     if (gap <= 0.5 * spacing * detail) {
       u_refused =
@@ -920,7 +943,7 @@ PlannerStats DemandPlanner::stats() const {
       probes_.size() * sizeof(Probe) + pool_.sets.size() * sizeof(Sh9Rgb) +
       pool_.free.size() * sizeof(std::int32_t) + index_.bytes() + far_.bytes() +
       (planned_.size() + in_flight_.size()) * per_pending +
-      receivers_.size() * sizeof(ReceiverView));
+      receivers_.size() * sizeof(ReceiverView) + nearest_memo_.capacity() * sizeof(NearestMemo));
   return s;
 }
 

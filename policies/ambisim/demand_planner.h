@@ -170,6 +170,10 @@ class DemandPlanner final : public Planner {
   bool evaluate_far_field_reference(const glm::dvec3& p, FarField::Answer& out) const;
   // Distance from c to the nearest probe or pending capture, and the local detail factor.
   double nearest_distance(const glm::dvec3& c, double* detail) const;
+  // The same from the index's answer (the nearest staying indexed probe n at distance best;
+  // n < 0: none): the unindexed tail and the pending captures added.
+  double nearest_beyond_index(const glm::dvec3& c, std::int64_t n, double best,
+                              double* detail) const;
   // The probe's value at the lamps' current level (its lamp layer added).
   Sh9Rgb current(const Probe& q) const;
   // What the probe shows now: current() as it fades in from what was shown before.
@@ -218,6 +222,18 @@ class DemandPlanner final : public Planner {
   double budget_scale_ = 1.0;  // near spacing factor from the budget (set_budget)
   Focus focus_;
   std::vector<ReceiverView> receivers_;
+  // Per receiver slot: the nearest staying indexed probe found for it, and for which receiver,
+  // point and index build. Between rebuilds the indexed probes only leave (new ones join the
+  // scanned tail), so while that probe stays it is still the nearest (ties go to the lower
+  // slot in both): plan() then skips the index search, the bulk of its cost per receiver.
+  struct NearestMemo {
+    std::uint64_t id = 0;
+    glm::dvec3 at{0.0};
+    std::uint64_t build = 0;
+    std::int64_t probe = -1;
+  };
+  std::vector<NearestMemo> nearest_memo_;
+  std::uint64_t index_builds_ = 0;  // reindex() calls: a memo of an older build is void
   std::uint64_t next_tag_ = 1;
   std::vector<Probe> probes_;  // in delivery order
   std::vector<Look> looks_;    // beside probes_, as of the last update() or delivery
