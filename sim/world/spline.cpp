@@ -26,7 +26,9 @@ Spline3::Spline3(std::vector<glm::dvec3> points, int samples_per_segment) {
   const int n = segments * std::max(samples_per_segment, 1);
   table_t_.resize(static_cast<std::size_t>(n) + 1);
   table_s_.resize(static_cast<std::size_t>(n) + 1);
+  table_p_.resize(static_cast<std::size_t>(n) + 1);
   glm::dvec3 prev = eval(0.0);
+  table_p_[0] = prev;
   table_t_[0] = 0.0;
   table_s_[0] = 0.0;
   for (int k = 1; k <= n; ++k) {
@@ -34,6 +36,7 @@ Spline3::Spline3(std::vector<glm::dvec3> points, int samples_per_segment) {
     const glm::dvec3 p = eval(t);
     table_t_[k] = t;
     table_s_[k] = table_s_[k - 1] + glm::length(p - prev);
+    table_p_[k] = p;
     prev = p;
   }
 }
@@ -94,7 +97,7 @@ double Spline3::closest_s(const glm::dvec3& p) const {
   std::size_t best_k = 0;
   double best_c = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < n; k += kStride) {
-    const glm::dvec3 q = eval(table_t_[k]);
+    const glm::dvec3& q = table_p_[k];
     const double d2 = glm::dot(p - q, p - q);
     if (d2 < best_c) {
       best_c = d2;
@@ -106,8 +109,8 @@ double Spline3::closest_s(const glm::dvec3& p) const {
   double best_s = 0.0;
   double best_d2 = std::numeric_limits<double>::infinity();
   for (std::size_t k = lo; k < hi; ++k) {
-    const glm::dvec3 a = eval(table_t_[k]);
-    const glm::dvec3 b = eval(table_t_[k + 1]);
+    const glm::dvec3& a = table_p_[k];
+    const glm::dvec3& b = table_p_[k + 1];
     const glm::dvec3 ab = b - a;
     const double len2 = glm::dot(ab, ab);
     const double f = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;

@@ -33,6 +33,9 @@ class Spline3 {
   std::vector<glm::dvec3> points_;
   std::vector<double> table_t_;  // parameter samples
   std::vector<double> table_s_;  // cumulative arc length at each sample
+  // The curve at each sample: closest_s() reads it instead of evaluating the curve again (a
+  // planner with route prediction asks several times per frame; 24 B per sample).
+  std::vector<glm::dvec3> table_p_;
 };
 
 }  // namespace ambisim
