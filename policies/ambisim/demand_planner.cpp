@@ -908,7 +908,9 @@ void DemandPlanner::update(const FrameContext& ctx) {
     if (!gone(q)) continue;
     pool_.release(q.from);
     pool_.release(q.lamps);
-    pool_.release(q.full);  // a gone probe weighs nothing: its set is never read again
+    // A gone probe weighs nothing, and stays gone (fade_out_start is set once, the clock only
+    // moves on): its set is never read again.
+    pool_.release(q.full);
     ++dead;
   }
   if (dead > kUnindexedTail) {

@@ -3,9 +3,10 @@
 // planner whose format is fp16 keeps its sets in memory, not only how it rounds them, so that
 // the memory it reports is what it holds.
 //
-// Input ranges: to_half takes any float; values beyond 65504 become infinity and values below
-// 2^-24 round to zero or a subnormal, as Eigen::half rounds (to nearest even). half_to_float is
-// exact for every one of the 65536 bit patterns (NaN stays NaN).
+// Input ranges: to_half takes any float and rounds as Eigen::half does (to nearest even):
+// magnitudes from 65520 up become infinity, those under 2^-14 subnormals or zero.
+// half_to_float is exact for every one of the 65536 bit patterns (NaN stays NaN), provided
+// subnormal floats are not flushed to zero (no -ffast-math; the test checks every pattern).
 #include <array>
 #include <bit>
 #include <cstdint>
@@ -20,8 +21,9 @@ struct HalfSh9Rgb {
 
 // The float a binary16 bit pattern stands for. Branch-free for finite values, so that a loop
 // over a set vectorises: the exponent and mantissa moved into a float's fields read as the
-// value times 2^-112 (subnormal halves land on normal floats), and one exact multiplication
-// by 2^112 puts it right; infinities and NaNs get the all-ones float exponent instead.
+// value times 2^-112 (a float subnormal for a subnormal half), and one exact multiplication
+// by 2^112 puts it right (a normal float); infinities and NaNs get the all-ones float exponent
+// instead.
 inline float half_to_float(std::uint16_t h) {
   const std::uint32_t magnitude = h & 0x7fffu;
   const std::uint32_t sign = static_cast<std::uint32_t>(h & 0x8000u) << 16;
