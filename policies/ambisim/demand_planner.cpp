@@ -558,12 +558,10 @@ bool DemandPlanner::evaluate_far_field_reference(const glm::dvec3& p, FarField::
 }
 
 double DemandPlanner::nearest_distance(const glm::dvec3& c, double* detail) const {
-  *detail = 1.0;
-  auto staying = [&](std::size_t i) { return probes_[i].fade_out_start < 0.0; };
   double best = 0.0;
-  std::int64_t n = index_.nearest(
+  const std::int64_t n = index_.nearest(
       c, [&](std::uint32_t i) -> const glm::dvec3& { return probes_[i].position; },
-      [&](std::uint32_t i) { return staying(i); }, &best);
+      [&](std::uint32_t i) { return probes_[i].fade_out_start < 0.0; }, &best);
   return nearest_beyond_index(c, n, best, detail);
 }
 
@@ -938,8 +936,8 @@ PlannerStats DemandPlanner::stats() const {
   s.live_probes = static_cast<std::int64_t>(
       std::count_if(probes_.begin(), probes_.end(), [&](const Probe& q) { return !gone(q); }));
   // What is held, as held: the probes (their sets inline as fp16 bits, or in the pool as fp32),
-  // the pool of fp32, fading and lamp sets, the index, the
-  // pending captures (std::map nodes: about 4 pointers of overhead each) and the receivers.
+  // the pool of fp32, fading and lamp sets, the index, the pending captures (std::map nodes:
+  // about 4 pointers of overhead each), the receivers and their nearest-probe memos.
   const std::size_t per_pending = sizeof(Pending) + sizeof(std::uint64_t) + 4 * sizeof(void*);
   s.bytes = static_cast<std::int64_t>(
       probes_.size() * sizeof(Probe) + pool_.sets.size() * sizeof(Sh9Rgb) +
