@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <numbers>
 #include <stdexcept>
 
 #include <vtkActor.h>
@@ -39,7 +40,6 @@
 namespace ambisim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // The terrain drawn reaches this far beyond the camera's path, at most kTerrainPoints samples
 // along each side (the grid the GPU draws every panel and frame).
 constexpr double kTerrainMarginM = 1500.0;
@@ -61,8 +61,8 @@ std::string format_caption(const std::string& label, double time, double viewed_
 }
 
 double vertical_fov_deg(double horizontal_deg, int width, int height) {
-  const double t = std::tan(horizontal_deg * kPi / 360.0) * height / width;
-  return 2.0 * std::atan(t) * 180.0 / kPi;
+  const double t = std::tan(horizontal_deg * std::numbers::pi / 360.0) * height / width;
+  return 2.0 * std::atan(t) * 180.0 / std::numbers::pi;
 }
 
 glm::dvec3 view_up(const glm::dvec3& look) {
@@ -220,7 +220,7 @@ ScreenCircle project_sphere(const glm::dvec3& camera, const glm::dvec3& look, do
   const double z = glm::dot(v, f);
   ScreenCircle c;
   if (z <= kNearClipM) return c;
-  const double tan_h = std::tan(fov_deg * kPi / 360.0);
+  const double tan_h = std::tan(fov_deg * std::numbers::pi / 360.0);
   const double tan_v = tan_h * height / width;
   const double xn = glm::dot(v, right) / z / tan_h;
   const double yn = glm::dot(v, up) / z / tan_v;
@@ -284,7 +284,7 @@ FilmRenderer::FilmRenderer(const World& world, const FilmSettings& settings, int
       points->InsertNextPoint(x, y, z);
       const glm::dvec3 o(x + 0.25 * world.cell_m(), y + 0.25 * world.cell_m(), z + 20.0);
       const Rgb l = trace_radiance(il, o, glm::dvec3(0.0, 0.0, -1.0), Marcher::accelerated);
-      const auto c = displayed(l * static_cast<float>(kPi), settings.exposure);
+      const auto c = displayed(l * static_cast<float>(std::numbers::pi), settings.exposure);
       colours->InsertNextTypedTuple(c.data());
     }
   }
@@ -348,11 +348,12 @@ FilmRenderer::FilmRenderer(const World& world, const FilmSettings& settings, int
   // The sky behind: its radiance toward the horizon and the zenith, on the same scale.
   const glm::dvec3 mid = settings.camera_positions.empty() ? glm::dvec3(lo + 0.5 * (hi - lo), 0.0)
                                                            : settings.camera_positions.front();
-  const auto horizon =
-      displayed(il.sky(mid, glm::normalize(glm::dvec3(1.0, 0.0, 0.05))) * static_cast<float>(kPi),
+  const auto horizon = displayed(il.sky(mid, glm::normalize(glm::dvec3(1.0, 0.0, 0.05))) *
+                                     static_cast<float>(std::numbers::pi),
+                                 settings.exposure);
+  const auto zenith =
+      displayed(il.sky(mid, glm::dvec3(0.0, 0.0, 1.0)) * static_cast<float>(std::numbers::pi),
                 settings.exposure);
-  const auto zenith = displayed(il.sky(mid, glm::dvec3(0.0, 0.0, 1.0)) * static_cast<float>(kPi),
-                                settings.exposure);
 
   const std::array<std::array<int, 2>, 3> resolutions = {{{32, 20}, {16, 10}, {8, 6}}};
   for (std::size_t level = 0; level < resolutions.size(); ++level) {
@@ -448,7 +449,7 @@ ImageRgb8 FilmRenderer::render(const FilmFrame& frame) {
       if (glm::dot(v, f) < -s.radius_m || glm::length(v) > kFarClipM + s.radius_m) continue;
       const double z = std::max(glm::dot(v, f), kNearClipM);
       const double radius_px =
-          s.radius_m / z / std::tan(m.vfov * kPi / 360.0) * 0.5 * m.s.panel_height;
+          s.radius_m / z / std::tan(m.vfov * std::numbers::pi / 360.0) * 0.5 * m.s.panel_height;
       const Impl::UnitSphere& u = m.unit_spheres[radius_px > 24.0 ? 0 : (radius_px > 6.0 ? 1 : 2)];
       const vtkIdType first = points->GetNumberOfPoints();
       for (const auto& n : u.vertices) {

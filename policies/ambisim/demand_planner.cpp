@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include <glm/geometric.hpp>
 
@@ -12,7 +13,6 @@
 namespace ambisim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Probes delivered between index rebuilds, scanned linearly by queries until the next.
 constexpr std::size_t kUnindexedTail = 32;
 // Bump weight below which a lookup mixes in the far field. With the tail scan
@@ -742,7 +742,7 @@ std::vector<CaptureRequest> DemandPlanner::plan(const FrameContext& ctx) {
   // 3. Rings around the predicted camera, denser near it.
   for (double r : {6.0, 12.0, 24.0, 48.0}) {
     for (int a = 0; a < 8; ++a) {
-      const double phi = 2.0 * kPi * a / 8.0;
+      const double phi = 2.0 * std::numbers::pi * a / 8.0;
       const double x = focus_.ahead.x + r * std::cos(phi), y = focus_.ahead.y + r * std::sin(phi);
       consider({x, y, ground(x, y) + height_});
     }

@@ -6,13 +6,12 @@
 
 #include <glm/geometric.hpp>
 
+#include "policies/core/container_bytes.h"
 #include "policies/core/default_ambient.h"
 
 namespace ambisim {
 namespace {
 
-// A std::map node holds the value plus three links and a colour word.
-constexpr std::size_t kMapNodeOverhead = 4 * sizeof(void*);
 // A blend ends (snaps to its target) once less than exp(-5) (0.7 %) of the way is left, as
 // grid's fades do after five time constants.
 const double kBlendEnd = std::exp(-5.0);

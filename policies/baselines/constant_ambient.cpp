@@ -1,13 +1,12 @@
 #include "policies/baselines/constant_ambient.h"
 
 #include <limits>
+#include <numbers>
 
 #include "policies/core/default_ambient.h"
 
 namespace ambisim {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::vector<ParamSpec> rgb_params(const std::string& prefix, double grey, const std::string& what) {
   std::vector<ParamSpec> out;
@@ -50,7 +49,7 @@ ConstantAmbientPlanner::ConstantAmbientPlanner(Mode mode, const PlannerParams& p
     : mode_(mode), params_(params) {
   // Projections of the default radiance: uniform L gives L00 = sqrt(4 pi) L; sky A above and
   // ground B below give L00 = sqrt(pi) (A + B), L10 = pi Y1 (A - B) and nothing else up to l=2.
-  const double y0 = kShY00 * 4.0 * kPi;
+  const double y0 = kShY00 * 4.0 * std::numbers::pi;
   if (mode_ == Mode::constant) {
     fallback_.c[0] = read_rgb(params_, "colour") * static_cast<float>(y0);
   } else {

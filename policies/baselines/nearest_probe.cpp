@@ -6,16 +6,11 @@
 
 #include <glm/geometric.hpp>
 
+#include "policies/core/container_bytes.h"
 #include "policies/core/default_ambient.h"
 #include "policies/core/solid_clearance.h"
 
 namespace ambisim {
-namespace {
-
-// A std::map node holds the value plus three links and a colour word.
-constexpr std::size_t kMapNodeOverhead = 4 * sizeof(void*);
-
-}  // namespace
 
 PlannerInfo NearestProbePlanner::info() {
   return {

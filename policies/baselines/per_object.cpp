@@ -5,15 +5,10 @@
 
 #include <glm/geometric.hpp>
 
+#include "policies/core/container_bytes.h"
 #include "policies/core/default_ambient.h"
 
 namespace ambisim {
-namespace {
-
-// A std::map node holds the value plus three links and a colour word.
-constexpr std::size_t kMapNodeOverhead = 4 * sizeof(void*);
-
-}  // namespace
 
 PlannerInfo PerObjectPlanner::info() {
   std::vector<ParamSpec> params = {

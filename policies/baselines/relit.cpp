@@ -6,16 +6,12 @@
 
 #include <glm/geometric.hpp>
 
+#include "policies/core/container_bytes.h"
 #include "policies/core/default_ambient.h"
 #include "policies/core/solid_clearance.h"
 
 namespace ambisim {
 namespace {
-
-// A std::map node holds the value plus three links and a colour word.
-constexpr std::size_t kMapNodeOverhead = 4 * sizeof(void*);
-
-double luminance(const Rgb& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
 Rgb max0(const Rgb& c) {
   return Rgb(std::max(c.x, 0.0f), std::max(c.y, 0.0f), std::max(c.z, 0.0f));

@@ -6,13 +6,12 @@
 
 #include <glm/geometric.hpp>
 
+#include "policies/core/container_bytes.h"
 #include "policies/core/default_ambient.h"
 
 namespace ambisim {
 namespace {
 
-// A std::map node holds the value plus three links and a colour word.
-constexpr std::size_t kMapNodeOverhead = 4 * sizeof(void*);
 // Fades end after this many time constants (99.3 % of the way; the last 0.7 % snaps).
 constexpr double kFadeEnd = 5.0;
 

@@ -1,14 +1,14 @@
 #include "policies/core/default_ambient.h"
 
 #include <limits>
+#include <numbers>
 
 namespace ambisim {
 
 Sh9Rgb hemisphere_sh(const Rgb& sky, const Rgb& ground) {
-  constexpr double kPi = 3.14159265358979323846;
   Sh9Rgb sh;
-  sh.c[0] = (sky + ground) * static_cast<float>(kShY00 * 2.0 * kPi);
-  sh.c[2] = (sky - ground) * static_cast<float>(kPi * kShY1);
+  sh.c[0] = (sky + ground) * static_cast<float>(kShY00 * 2.0 * std::numbers::pi);
+  sh.c[2] = (sky - ground) * static_cast<float>(std::numbers::pi * kShY1);
   return sh;
 }
 

@@ -8,16 +8,10 @@
 #include <limits>
 #include <map>
 
+#include "policies/core/container_bytes.h"
 #include "policies/core/default_ambient.h"
 
 namespace ambisim {
-namespace {
-
-// A std::map node holds the value plus three links and a colour word.
-constexpr std::size_t kMapNodeOverhead = 4 * sizeof(void*);
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-}  // namespace
 
 template <int Dim>
 LookupResult ShGraphCore<Dim>::lookup(const glm::dvec3& p) const {
@@ -38,7 +32,7 @@ bool ShGraphCore<Dim>::lookup_into(const glm::dvec3& p, LookupResult& r, int abo
   constexpr int kOctants = 1 << Dim;
   struct Best {
     const AnchorEntry* e = nullptr;
-    double d2 = kInf;
+    double d2 = std::numeric_limits<double>::infinity();
   };
   std::array<Best, kOctants> best{}, chosen{};
   int chosen_depth = 0;

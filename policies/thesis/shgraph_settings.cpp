@@ -7,8 +7,6 @@
 namespace ambisim {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
 // Cells of `size` from `root` down while they stay >= `floor_m` (integer steps, so 243 / 27
 // gives exactly 2 levels without log rounding), at most `limit` levels.
 int levels_down(double root, double floor_m, int limit) {
@@ -25,7 +23,7 @@ int levels_down(double root, double floor_m, int limit) {
 
 double min_cell_for_speed(double speed_mps, double fps, double faces_per_frame, double k) {
   const double rate = fps * faces_per_frame / 6.0;  // sets per second
-  if (rate <= 0.0) return kInf;
+  if (rate <= 0.0) return std::numeric_limits<double>::infinity();
   return k * speed_mps / rate;
 }
 

@@ -44,11 +44,9 @@ namespace {
 
 // A loop whose end lies within this of its start is closed: wrapping is not a teleport.
 constexpr double kClosedGap = 1e-6;  // m
-// Positions and course distances: the world's origin may lie up to 1e9 m away, so 1e10 m
-// bounds every real coordinate while keeping differences and lengths finite.
-constexpr double kMaxCoord = 1e10;  // m
-const Range kCoord = Range::closed(-kMaxCoord, kMaxCoord);
-const Range kDistance = Range::closed(0.0, kMaxCoord);
+// Positions and course distances are bounded as every scenario coordinate (landmark_ref.h).
+const Range kCoord = Range::closed(-kMaxScenarioCoord, kMaxScenarioCoord);
+const Range kDistance = Range::closed(0.0, kMaxScenarioCoord);
 constexpr double kMaxHeight = 1e5;  // m above the road
 // Spline3 merges points closer than this; a path needs two points farther apart.
 constexpr double kSamePoint = 1e-9;       // m
@@ -68,7 +66,7 @@ std::vector<glm::dvec3> parse_points(ObjectReader& r, const char* key,
   std::vector<glm::dvec3> out;
   for (std::size_t i = 0; i < v->size(); ++i) {
     const std::string path = r.path_of(key) + "/" + std::to_string(i);
-    out.push_back(read_position((*v)[i], r.file(), path, kMaxCoord, refs, i));
+    out.push_back(read_position((*v)[i], r.file(), path, kMaxScenarioCoord, refs, i));
   }
   // With landmarks the points are known only once the world is: checked in
   // resolve_camera_landmarks.
@@ -88,7 +86,7 @@ CutRecord parse_cut(ObjectReader& e, std::vector<LandmarkRef>& refs, std::size_t
     c.metres = e.number("to_arc_length_m", kDistance);
   } else if (e.has("to_position")) {
     c.kind = CutRecord::Kind::to_position;
-    c.position = read_position(e, "to_position", kMaxCoord, refs, index);
+    c.position = read_position(e, "to_position", kMaxScenarioCoord, refs, index);
   } else {
     c.kind = CutRecord::Kind::jump_ahead;
     c.metres = e.number("jump_ahead_m", kCoord);
@@ -120,7 +118,7 @@ void parse_view(ObjectReader& r, CameraPathRecord& rec) {
     rec.view.fov_deg = v->number("fov_deg", rec.view.fov_deg, {0.0, 180.0, true, true});
     rec.view.aspect = v->number("aspect", rec.view.aspect, Range::closed(0.1, 10.0));
     if (v->has("look_at")) {
-      rec.look_at = read_position(*v, "look_at", kMaxCoord, rec.look_at_landmark, 0);
+      rec.look_at = read_position(*v, "look_at", kMaxScenarioCoord, rec.look_at_landmark, 0);
     }
     v->finish();
   }

@@ -33,6 +33,10 @@ struct LandmarkRef {
   std::string path;          // JSON path, for errors once the world is known
 };
 
+// The bound on every scenario coordinate: the world's origin may lie up to 1e9 m away, so 1e10 m
+// bounds every real coordinate while keeping differences and lengths finite.
+inline constexpr double kMaxScenarioCoord = 1e10;  // m
+
 // Reads the position at `key` of `r`: coordinates (each within +-max_coord) are returned as is;
 // a landmark object is appended to `refs` (with `index`) and (0, 0, 0) returned, to be filled in
 // by resolve_landmarks.

@@ -36,7 +36,6 @@
 namespace ambisim {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 // Every live receiver gets a reference capture on every frame: beyond this many a run would
 // never finish (and its reference would not fit in memory).
 constexpr int kMaxLive = 10000;
@@ -92,7 +91,7 @@ ReceiversRecord parse_receivers(ObjectReader& r) {
   }
   if (auto p = r.optional_object("lod_props")) {
     LodPropsRecord l;
-    l.trigger = read_position(*p, "trigger", 1e10, l.trigger_landmark, 0);
+    l.trigger = read_position(*p, "trigger", kMaxScenarioCoord, l.trigger_landmark, 0);
     l.lod_distance_m = p->number("lod_distance_m", l.lod_distance_m, Range::positive());
     l.rate_per_s = p->number("rate_per_s", l.rate_per_s, Range::closed(0.0, 1e4));
     l.band_near_m = p->number("band_near_m", l.band_near_m, Range::non_negative());
@@ -127,7 +126,7 @@ ReceiversRecord parse_receivers(ObjectReader& r) {
   }
   if (auto c = r.optional_object("crowd")) {
     CrowdRecord cr;
-    cr.centre = read_position(*c, "centre", 1e10, cr.centre_landmark, 0);
+    cr.centre = read_position(*c, "centre", kMaxScenarioCoord, cr.centre_landmark, 0);
     cr.count = c->integer("count", cr.count, Range::closed(0, kMaxLive));
     cr.radius_m = c->number("radius_m", cr.radius_m, Range::positive());
     cr.walking_share = c->number("walking_share", cr.walking_share, Range::closed(0.0, 1.0));
@@ -189,7 +188,7 @@ Receiver& ReceiverSet::spawn(ReceiverKind kind, double time) {
   r.id = kind == ReceiverKind::camera_object ? 0 : next_id_++;
   r.kind = kind;
   r.spawn_time = time;
-  r.despawn_time = kInf;
+  r.despawn_time = std::numeric_limits<double>::infinity();
   r.kind_order = counters_.spawned[kind_index(kind)];
   live_.push_back(r);  // ids only grow, so appending keeps id order
   ++counters_.spawned[kind_index(kind)];

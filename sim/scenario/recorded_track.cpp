@@ -11,13 +11,13 @@
 #include "sim/base/csv_table.h"
 #include "sim/base/hash.h"
 #include "sim/base/input_error.h"
+#include "sim/scenario/landmark_ref.h"
 
 namespace ambisim {
 namespace {
 
-constexpr double kMaxTime = 1e9;    // s
-constexpr double kMaxCoord = 1e10;  // m, as every scenario position
-constexpr double kMaxSpeed = 1e6;   // m/s, each velocity component
+constexpr double kMaxTime = 1e9;   // s
+constexpr double kMaxSpeed = 1e6;  // m/s, each velocity component
 
 std::string number_text(double x) {
   char buf[32];
@@ -242,7 +242,7 @@ RecordedCamera parse_camera_csv(std::string_view text, const std::string& file) 
     const double time = read_time(t, i, ct);
     if (!times.empty()) check_increasing(t, i, times.back(), time, "");
     times.push_back(time);
-    positions.push_back(read_vector(t, i, vc.position, kMaxCoord, "m"));
+    positions.push_back(read_vector(t, i, vc.position, kMaxScenarioCoord, "m"));
     if (vc.has_velocity) velocities.push_back(read_vector(t, i, vc.velocity, kMaxSpeed, "m/s"));
     bool cut = false;
     if (cc >= 0) {
@@ -289,7 +289,7 @@ RecordedReceivers parse_receiver_csv(std::string_view text, const std::string& f
     const double time = read_time(t, i, ct);
     if (!b.times.empty()) check_increasing(t, i, b.times.back(), time, " of id " + key);
     b.times.push_back(time);
-    b.positions.push_back(read_vector(t, i, vc.position, kMaxCoord, "m"));
+    b.positions.push_back(read_vector(t, i, vc.position, kMaxScenarioCoord, "m"));
     if (vc.has_velocity) b.velocities.push_back(read_vector(t, i, vc.velocity, kMaxSpeed, "m/s"));
   }
   // Spawn order: by first sample time, then by the first row in the file.

@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "sim/base/hash.h"
 
 namespace ambisim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kOctaves = 5;
 
 double smoothstep(double a, double b, double x) {
@@ -37,7 +37,7 @@ double periodic_value_noise(std::uint64_t seed, double x, double y, int period) 
 
 CloudLayer::CloudLayer(const CloudParams& p, double layer_z) : p_(p), z_(layer_z) {
   // The wind blows toward wind_from + 180 degrees (compass: 0 north = +y, 90 east = +x).
-  const double to = (p.wind_from_deg + 180.0) * kPi / 180.0;
+  const double to = (p.wind_from_deg + 180.0) * std::numbers::pi / 180.0;
   wind_ = glm::dvec2(std::sin(to), std::cos(to)) * p.wind_mps;
   texel_m_ = 8.0 * p.scale_m / kTexels;
   // Octave o: lattice period 8 * 2^o cells over the tile (the first has 8 features per tile,

@@ -3,15 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include <glm/geometric.hpp>
 
 namespace ambisim {
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-}  // namespace
 
 Illumination::Illumination(const World& w)
     : w_(w), s_(w.params().lighting().is_legacy() ? nullptr : &w.start_lighting()) {}
@@ -51,7 +47,7 @@ Rgb Illumination::lit_surface(const Rgb& albedo, const glm::dvec3& p, const glm:
     const double level = layer_ == LightLayer::lamps ? 1.0 : s.lamp_level;
     if (level > 0.0) e += s.lamps->irradiance(p, n) * static_cast<float>(level);
   }
-  return albedo * e * static_cast<float>(1.0 / kPi);
+  return albedo * e * static_cast<float>(1.0 / std::numbers::pi);
 }
 
 Rgb Illumination::sky(const glm::dvec3& o, const glm::dvec3& d) const {

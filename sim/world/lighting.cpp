@@ -2,20 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <glm/geometric.hpp>
 
 namespace ambisim {
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-double luminance(const Rgb& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
-
-}  // namespace
 
 glm::dvec3 sun_direction(double elevation_deg, double azimuth_deg) {
-  const double e = elevation_deg * kPi / 180.0, a = azimuth_deg * kPi / 180.0;
+  const double e = elevation_deg * std::numbers::pi / 180.0,
+               a = azimuth_deg * std::numbers::pi / 180.0;
   return {std::sin(a) * std::cos(e), std::cos(a) * std::cos(e), std::sin(e)};
 }
 
@@ -36,16 +31,17 @@ Lighting::Lighting(const SunParams& sun, const SkyParams& sky, const FogParams& 
     const double nz = -1.0 + 2.0 * k / (kSkyTable - 1);
     const glm::dvec3 n{std::sqrt(std::max(0.0, 1.0 - nz * nz)), 0.0, nz};
     if (sky.uniform) {
-      e_sky_[k] = Rgb(static_cast<float>(kPi * (1.0 + nz) / 2.0)) * sky.uniform_radiance;
+      e_sky_[k] =
+          Rgb(static_cast<float>(std::numbers::pi * (1.0 + nz) / 2.0)) * sky.uniform_radiance;
       continue;
     }
     glm::dvec3 sum(0.0);
-    const double dw = (1.0 / kMu) * (2.0 * kPi / kPhi);
+    const double dw = (1.0 / kMu) * (2.0 * std::numbers::pi / kPhi);
     for (int a = 0; a < kMu; ++a) {
       const double mu = (a + 0.5) / kMu, sn = std::sqrt(1.0 - mu * mu);
       const glm::dvec3 l(sky_radiance({sn, 0.0, mu}));
       for (int b = 0; b < kPhi; ++b) {
-        const double ph = (b + 0.5) * 2.0 * kPi / kPhi;
+        const double ph = (b + 0.5) * 2.0 * std::numbers::pi / kPhi;
         const double c = n.x * sn * std::cos(ph) + n.z * mu;
         if (c > 0.0) sum += l * (c * dw);
       }
@@ -74,7 +70,7 @@ Rgb Lighting::surface_radiance(const Rgb& albedo, const glm::dvec3& n, bool sunl
     const double c = glm::dot(n, sun_dir_);
     if (c > 0.0) e += e_sun_ * static_cast<float>(c);
   }
-  return albedo * e * static_cast<float>(1.0 / kPi);
+  return albedo * e * static_cast<float>(1.0 / std::numbers::pi);
 }
 
 Rgb Lighting::apply_fog(const Rgb& l, double t) const {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <glm/geometric.hpp>
 
@@ -12,13 +13,10 @@
 namespace ambisim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Night sky: airglow and starlight, 0.002 lux on the ground (a moonless clear night), as a
 // uniform radiance E / pi, in kcd/m^2.
-constexpr float kNightRadiance = static_cast<float>(0.002e-3 / kPi);
+constexpr float kNightRadiance = static_cast<float>(0.002e-3 / std::numbers::pi);
 constexpr float kCloudAlbedo = 0.35f;  // grey cloud base seen from below
-
-double luminance(const Rgb& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
 // Keyframed elevation/azimuth, linear between keys, constant outside.
 void keyframe_sun(const std::vector<SunPathParams::Key>& k, double t, double* el, double* az) {
@@ -44,12 +42,12 @@ void keyframe_sun(const std::vector<SunPathParams::Key>& k, double t, double* el
 template <class F>
 Sh9Rgb project_hemisphere(F radiance) {
   constexpr int kMu = 16, kPhi = 32;
-  const double dw = (1.0 / kMu) * (2.0 * kPi / kPhi);
+  const double dw = (1.0 / kMu) * (2.0 * std::numbers::pi / kPhi);
   std::array<glm::dvec3, kShCount> acc{};
   for (int a = 0; a < kMu; ++a) {
     const double mu = (a + 0.5) / kMu, sn = std::sqrt(1.0 - mu * mu);
     for (int b = 0; b < kPhi; ++b) {
-      const double ph = (b + 0.5) * 2.0 * kPi / kPhi;
+      const double ph = (b + 0.5) * 2.0 * std::numbers::pi / kPhi;
       const glm::dvec3 d(sn * std::cos(ph), sn * std::sin(ph), mu);
       const glm::dvec3 l(radiance(d));
       const ShBasis y = sh_basis(d);
@@ -154,7 +152,7 @@ LightingState LightingModel::compute(double t, bool set_shadows) {
   const Rgb ambient_up =
       s.sky_irradiance_up + s.e_sun * static_cast<float>(std::max(s.sun_dir.z, 0.0));
   if (s.clouds != nullptr) {
-    s.cloud_radiance = ambient_up * static_cast<float>(kCloudAlbedo / kPi);
+    s.cloud_radiance = ambient_up * static_cast<float>(kCloudAlbedo / std::numbers::pi);
     const float m = static_cast<float>(s.clouds->opacity() * s.clouds->mean_cover());
     s.sky_sh = project_hemisphere(
         [&](const glm::dvec3& d) { return s.clear_sky(d) * (1.0f - m) + s.cloud_radiance * m; });
@@ -166,10 +164,10 @@ LightingState LightingModel::compute(double t, bool set_shadows) {
   s.fog_sky_distance_m = p_.fog.sky_distance_m;
   // The legacy fog colour is a radiance; in the lit models it is the fog's albedo, scattering
   // the sun and sky light isotropically.
-  s.fog_inscatter =
-      p_.sky.model == SkyParams::Model::gradient
-          ? p_.fog.colour
-          : p_.fog.colour * (s.e_sun + s.sky_irradiance_up) * static_cast<float>(1.0 / (4.0 * kPi));
+  s.fog_inscatter = p_.sky.model == SkyParams::Model::gradient
+                        ? p_.fog.colour
+                        : p_.fog.colour * (s.e_sun + s.sky_irradiance_up) *
+                              static_cast<float>(1.0 / (4.0 * std::numbers::pi));
   if (shadows_) {
     if (set_shadows) shadows_->set_time(t);
     s.shadows = shadows_.get();
@@ -229,11 +227,11 @@ LightingInfo LightingModel::info_at(double t) {
   // not of the sun alone, which near the horizon dims fast while the sky still lights the
   // scene (the sun's own rate overstated the change of probes at 4 deg elevation by 7x).
   const auto horizontal = [](const Scalars& x) {
-    return kPi * x.sky_zenith + x.sun * std::max(x.sun_dir.z, 0.0);
+    return std::numbers::pi * x.sky_zenith + x.sun * std::max(x.sun_dir.z, 0.0);
   };
   const auto facing_sun = [](const Scalars& x) {
     const double cos_el = std::sqrt(std::max(0.0, 1.0 - x.sun_dir.z * x.sun_dir.z));
-    return 0.5 * kPi * x.sky_zenith + x.sun * (x.sun_dir.z > 0.0 ? cos_el : 0.0);
+    return 0.5 * std::numbers::pi * x.sky_zenith + x.sun * (x.sun_dir.z > 0.0 ? cos_el : 0.0);
   };
   double rate = std::max(rel(horizontal(a), horizontal(b)), rel(facing_sun(a), facing_sun(b)));
   rate = std::max(rate, std::acos(std::clamp(glm::dot(a.sun_dir, b.sun_dir), -1.0, 1.0)) / span);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <glm/geometric.hpp>
 
@@ -9,8 +10,6 @@
 
 namespace ambisim {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Preetham 1999, appendix: [A..E] = M [T, 1] per channel (Y, x, y), the paper's 4 decimals.
 constexpr double kPerez[3][5][2] = {
@@ -50,7 +49,7 @@ void PreethamSky::perez_coefficients(double t, int channel, double out[5]) {
 }
 
 double PreethamSky::zenith_luminance(double t, double theta_s) {
-  const double chi = (4.0 / 9.0 - t / 120.0) * (kPi - 2.0 * theta_s);
+  const double chi = (4.0 / 9.0 - t / 120.0) * (std::numbers::pi - 2.0 * theta_s);
   return (4.0453 * t - 4.9710) * std::tan(chi) - 0.2155 * t + 2.4192;
 }
 
@@ -128,7 +127,7 @@ Rgb sun_irradiance(double apparent_elevation_deg, double turbidity) {
 
 double usno_global_illuminance_lux(double h) {
   constexpr double kX = 753.66156;
-  const double rh = h * kPi / 180.0;
+  const double rh = h * std::numbers::pi / 180.0;
   const double s = std::asin(kX * std::cos(rh) / (kX + 1.0));
   const double mm = kX * (std::cos(s) - std::sin(rh)) + std::cos(s);
   const double m = std::exp(-0.21 * mm) * std::sin(rh) +

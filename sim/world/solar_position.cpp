@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace ambisim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-double rad(double d) { return d * kPi / 180.0; }
-double deg(double r) { return r * 180.0 / kPi; }
+double rad(double d) { return d * std::numbers::pi / 180.0; }
+double deg(double r) { return r * 180.0 / std::numbers::pi; }
 // Excel's MOD: the result takes the divisor's sign (never negative here).
 double excel_mod(double a, double n) { return a - n * std::floor(a / n); }
 

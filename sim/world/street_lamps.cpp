@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <glm/geometric.hpp>
 
@@ -9,8 +10,6 @@
 
 namespace ambisim {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 long long bucket_key(long long i, long long j) { return (i << 32) ^ (j & 0xffffffffLL); }
 
@@ -26,11 +25,11 @@ StreetLamps::StreetLamps(const LampParams& p, const Spline3& road, double road_w
         lamps_.push_back(c + side * (k * offset) + glm::dvec3(0, 0, p.height_m));
     }
   }
-  const double cone = p.cone_deg * kPi / 180.0;
-  const double full = std::max(0.0, p.cone_deg - 10.0) * kPi / 180.0;
+  const double cone = p.cone_deg * std::numbers::pi / 180.0;
+  const double full = std::max(0.0, p.cone_deg - 10.0) * std::numbers::pi / 180.0;
   cos_edge_ = std::cos(cone);
   cos_full_ = std::cos(full);
-  reach_ = p.height_m * std::tan(std::min(cone, 89.0 * kPi / 180.0));
+  reach_ = p.height_m * std::tan(std::min(cone, 89.0 * std::numbers::pi / 180.0));
   cell_ = std::max(8.0, reach_);
   for (std::size_t k = 0; k < lamps_.size(); ++k) {
     const long long i = static_cast<long long>(std::floor(lamps_[k].x / cell_));

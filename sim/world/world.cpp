@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <numbers>
 
 #include <glm/geometric.hpp>
 
@@ -15,8 +16,6 @@
 
 namespace ambisim {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 double smoothstep(double a, double b, double x) {
   const double t = std::clamp((x - a) / (b - a), 0.0, 1.0);
@@ -202,8 +201,8 @@ World::World(const WorldParams& p) {
     std::vector<glm::dvec3> world_pts = local.control_points();
     for (auto& q : world_pts) q += glm::dvec3(origin_, 0.0);
     road_ = Spline3(world_pts);
-    const double tan_cut = std::tan(p.road.cutting_slope_deg * kPi / 180.0);
-    const double tan_emb = std::tan(p.road.embankment_slope_deg * kPi / 180.0);
+    const double tan_cut = std::tan(p.road.cutting_slope_deg * std::numbers::pi / 180.0);
+    const double tan_emb = std::tan(p.road.embankment_slope_deg * std::numbers::pi / 180.0);
     for (std::size_t k = 0; k < h.size(); ++k) {
       const double d = st.dist[k];
       if (!std::isfinite(d)) continue;
@@ -241,7 +240,7 @@ World::World(const WorldParams& p) {
       const double x = xs[i], y = yr;
       const double d = p.road.enabled ? st.dist[k] : std::numeric_limits<double>::infinity();
       const glm::dvec3 n = cell_normal(i, j);
-      const double slope_deg = std::acos(std::clamp(n.z, -1.0, 1.0)) * 180.0 / kPi;
+      const double slope_deg = std::acos(std::clamp(n.z, -1.0, 1.0)) * 180.0 / std::numbers::pi;
       Biome b = Biome::Grass;
       if (d <= half_w) {
         b = Biome::Asphalt;

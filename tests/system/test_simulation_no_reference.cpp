@@ -16,7 +16,7 @@ using namespace ambisim;
 
 namespace {
 
-test::SmallDrive& fixture() {
+test::SmallDrive& small_drive() {
   static test::SmallDrive f;
   return f;
 }
@@ -25,7 +25,7 @@ test::SmallDrive& fixture() {
 
 TEST_CASE("without a reference every planner plans, captures and serves exactly as with it",
           "[simulation]") {
-  auto& f = fixture();
+  auto& f = small_drive();
   for (const auto& info : planner_catalogue()) {
     if (info.name == "oracle") continue;  // served from the reference (next test)
     INFO(info.name);
@@ -91,7 +91,7 @@ TEST_CASE("without a reference every planner plans, captures and serves exactly 
 }
 
 TEST_CASE("the oracle cannot run without a reference", "[simulation]") {
-  auto& f = fixture();
+  auto& f = small_drive();
   auto oracle = make_planner("oracle");
   CHECK_THROWS_AS(simulate_without_reference(f.scenario, f.world, *oracle), std::invalid_argument);
 }

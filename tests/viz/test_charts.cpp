@@ -6,12 +6,12 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "sim/base/csv_table.h"
 #include "sim/base/input_error.h"
+#include "tests/viz/image_checks.h"
 #include "viz/charts.h"
 #include "viz/planner_style.h"
 #include "viz/png_writer.h"
@@ -19,16 +19,9 @@
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-namespace {
+using ambisim::test::distinct_colours;
 
-std::size_t distinct_colours(const ambisim::ImageRgb8& img) {
-  std::set<std::uint32_t> c;
-  for (std::size_t i = 0; i + 2 < img.rgb.size(); i += 3) {
-    c.insert((std::uint32_t(img.rgb[i]) << 16) | (std::uint32_t(img.rgb[i + 1]) << 8) |
-             img.rgb[i + 2]);
-  }
-  return c.size();
-}
+namespace {
 
 // Two planners x three budgets x two speeds on one scenario; one result.json with a series.
 fs::path make_sweep_dir() {

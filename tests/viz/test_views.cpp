@@ -3,7 +3,6 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
-#include <set>
 #include <sstream>
 
 #include <vtkCellData.h>
@@ -23,11 +22,14 @@
 
 #include "sim/base/input_error.h"
 #include "sim/base/json_reader.h"
+#include "tests/viz/image_checks.h"
 #include "viz/png_writer.h"
 #include "viz/views.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+
+using ambisim::test::distinct_colours;
 
 namespace {
 
@@ -93,15 +95,6 @@ fs::path make_run_dir() {
   write_file(dir / "result.json", result.dump());
   write_file(dir / "views.json", views.dump());
   return dir;
-}
-
-std::size_t distinct_colours(const ambisim::ImageRgb8& img) {
-  std::set<std::uint32_t> c;
-  for (std::size_t i = 0; i + 2 < img.rgb.size(); i += 3) {
-    c.insert((std::uint32_t(img.rgb[i]) << 16) | (std::uint32_t(img.rgb[i + 1]) << 8) |
-             img.rgb[i + 2]);
-  }
-  return c.size();
 }
 
 int count_datasets(const fs::path& pvd, std::vector<std::string>* files) {

@@ -19,7 +19,7 @@ namespace {
 constexpr float kCoefficientTolerance = 1e-6f;
 // The far field's cells sum up to thousands of presences in float before they are divided by
 // their weight: its coefficients agree with the scan's direct sums to this, absolutely.
-constexpr float kFarFieldTolerance = 1e-5f;
+constexpr float kIndexFarFieldTolerance = 1e-5f;
 
 std::vector<glm::dvec3> random_points(std::mt19937_64& rng, std::size_t n, double half_extent,
                                       double z_lo, double z_hi) {
@@ -130,7 +130,7 @@ TEST_CASE("ambisim's indexed lookups equal its linear scan, in and beyond the wo
       for (int i = 0; i < kShCount; ++i) {
         for (int ch = 0; ch < 3; ++ch) {
           CHECK(std::abs(fast.sh.c[i][ch] - slow.sh.c[i][ch]) <=
-                (ambisim->lookup_uses_far_field(points[k]) ? kFarFieldTolerance
+                (ambisim->lookup_uses_far_field(points[k]) ? kIndexFarFieldTolerance
                                                            : kCoefficientTolerance));
         }
       }

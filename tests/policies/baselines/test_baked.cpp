@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 
 #include <glm/geometric.hpp>
 
@@ -21,8 +22,6 @@
 using namespace ambisim;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Flat ground at `ground_z` and a straight route along +x from 0 to length_m, 1.5 m up.
 struct FlatLevel {
@@ -66,11 +65,11 @@ Sh9Rgb linear_field(const glm::dvec3& p) {
 
 Sh9Rgb uniform_sh(float radiance) {
   Sh9Rgb s;
-  s.c[0] = Rgb(radiance * static_cast<float>(4.0 * kPi * kShY00));
+  s.c[0] = Rgb(radiance * static_cast<float>(4.0 * std::numbers::pi * kShY00));
   return s;
 }
 
-double max_difference(const Sh9Rgb& a, const Sh9Rgb& b) {
+double max_coefficient_difference(const Sh9Rgb& a, const Sh9Rgb& b) {
   double m = 0.0;
   for (int k = 0; k < kShCount; ++k) {
     for (int ch = 0; ch < 3; ++ch) m = std::max(m, std::abs(double(a.c[k][ch]) - b.c[k][ch]));
@@ -188,7 +187,7 @@ TEST_CASE("baked lookup is trilinear: exact on a linear SH field", "[baked]") {
         const LookupResult r = p->lookup(at);
         REQUIRE(r.spacing_m == 2.0);
         REQUIRE(r.contributor_count == 8);
-        worst = std::max(worst, max_difference(r.sh, linear_field(at)));
+        worst = std::max(worst, max_coefficient_difference(r.sh, linear_field(at)));
         ++n;
       }
     }
@@ -201,7 +200,7 @@ TEST_CASE("baked lookup is trilinear: exact on a linear SH field", "[baked]") {
   const glm::dvec3 low(40.7, 3.3, -0.2);
   const LookupResult r = p->lookup(low);
   CHECK(r.contributor_count == 4);
-  CHECK(max_difference(r.sh, linear_field({low.x, low.y, 0.0})) < 2e-5);
+  CHECK(max_coefficient_difference(r.sh, linear_field({low.x, low.y, 0.0})) < 2e-5);
 }
 
 TEST_CASE("baked virtual offset never leaves a probe inside the terrain or canopy", "[baked]") {
@@ -294,7 +293,7 @@ TEST_CASE("baked_tod blends the two bake times around the current time linearly"
     p->update(level.context(t, 70.0));
     const LookupResult r = p->lookup({20.2, 0.4, 1.3});
     REQUIRE_FALSE(r.fell_back);
-    const double l00 = r.sh.c[0].x / (4.0 * kPi * kShY00);
+    const double l00 = r.sh.c[0].x / (4.0 * std::numbers::pi * kShY00);
     CHECK(l00 == Approx(expected_at(t)).epsilon(1e-6));
     CHECK(r.data_time == Approx(std::min(t, 70.0)));
   }

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "policies/core/default_ambient.h"
 #include "policies/registry/registry.h"
@@ -13,8 +14,6 @@
 using namespace ambisim;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // A set whose 27 values are all different and non-zero.
 Sh9Rgb distinct_sh(float base) {
@@ -28,7 +27,7 @@ Sh9Rgb distinct_sh(float base) {
 // The projection of a uniform radiance L: only L00 = sqrt(4 pi) L.
 Sh9Rgb uniform_sh(Rgb radiance) {
   Sh9Rgb s;
-  s.c[0] = radiance * static_cast<float>(4.0 * kPi * kShY00);
+  s.c[0] = radiance * static_cast<float>(4.0 * std::numbers::pi * kShY00);
   return s;
 }
 
@@ -127,8 +126,8 @@ TEST_CASE("constant captures once at the start and keeps only L00", "[policies]"
   CHECK(before.contributor_count == 0);
   for (const glm::dvec3 n : {glm::dvec3(0, 0, 1), glm::dvec3(0, 0, -1), glm::dvec3(1, 0, 0)}) {
     const Rgb e = sh_irradiance(before.sh, n);
-    CHECK(e.x == Approx(kPi * 0.5));
-    CHECK(e.z == Approx(kPi * 1.0));
+    CHECK(e.x == Approx(std::numbers::pi * 0.5));
+    CHECK(e.z == Approx(std::numbers::pi * 1.0));
   }
 
   const Sh9Rgb captured = distinct_sh(2.0f);
@@ -177,8 +176,9 @@ TEST_CASE("hemisphere keeps L00 and L10 only, its default is sky above, ground b
   for (double cz : {1.0, 0.5, 0.0, -0.3, -1.0}) {
     const glm::dvec3 n(std::sqrt(1.0 - cz * cz), 0.0, cz);
     const Rgb e = sh_irradiance(before.sh, n);
-    const Rgb want = static_cast<float>(kPi) * (sky * static_cast<float>((1 + cz) / 2) +
-                                                ground * static_cast<float>((1 - cz) / 2));
+    const Rgb want =
+        static_cast<float>(std::numbers::pi) *
+        (sky * static_cast<float>((1 + cz) / 2) + ground * static_cast<float>((1 - cz) / 2));
     for (int ch = 0; ch < 3; ++ch) CHECK(e[ch] == Approx(want[ch]).margin(1e-5));
   }
 

@@ -54,7 +54,7 @@ CascadesPlanner make_cascades(const std::vector<std::string>& sets) {
 }
 
 // A set holding `v` in every L0 channel (L0 only, so L1/L2 storage does not matter).
-Sh9Rgb flat_sh(float v) {
+Sh9Rgb tinted_sh(float v) {
   Sh9Rgb s;
   s.c[0] = Rgb(v, 2.0f * v, 0.5f * v);
   return s;
@@ -112,7 +112,7 @@ TEST_CASE("cascades: levels scroll by whole cells of their own, keeping their da
   auto g = make_cascades({"levels=2", "nx=5", "ny=5", "nz=3", "spacing_m=8", "vertical_spacing_m=4",
                           "height_m=8", "hysteresis=0"});
   auto by_height = [](const glm::dvec3& p) {
-    return flat_sh(static_cast<float>(1.0 + 0.01 * p.z));
+    return tinted_sh(static_cast<float>(1.0 + 0.01 * p.z));
   };
   const auto first = capture_all(g, frame_at(0.0, {-3.0, 0.0, 1.5}, 1000), by_height);
   // 75 + 75 probes; the 9 level-1 points at z = 8 inside level 0's footprint share a capture.
@@ -169,7 +169,7 @@ TEST_CASE("cascades: never-captured first (nearest first), then stale-and-close"
   };
   CHECK(xs(g.plan(frame_at(0.0, cam, 5))) == std::vector<double>{0, 8, -8, 16, -16});
   auto run = [&](double t, int n) {
-    return capture_all(g, frame_at(t, cam, n), [](const glm::dvec3&) { return flat_sh(1.0f); });
+    return capture_all(g, frame_at(t, cam, n), [](const glm::dvec3&) { return tinted_sh(1.0f); });
   };
   CHECK(xs(run(0.0, 3)) == std::vector<double>{0, 8, -8});
   // t = 5: the two never-captured ones (nearest first), then x = 0 (age 5 / (1 + 1/8)).
@@ -186,7 +186,7 @@ TEST_CASE("cascades: never-captured first (nearest first), then stale-and-close"
       {"levels=2", "nx=3", "ny=1", "nz=1", "spacing_m=8", "vertical_spacing_m=4", "height_m=8"});
   // Level 0: x = -8, 0, 8 at z = 8; level 1: x = -16, 0, 16 at z = 8 (0 shared).
   const auto a =
-      capture_all(h, frame_at(0.0, cam, 3), [](const glm::dvec3&) { return flat_sh(1.0f); });
+      capture_all(h, frame_at(0.0, cam, 3), [](const glm::dvec3&) { return tinted_sh(1.0f); });
   CHECK(xs(a) == std::vector<double>{0, 8, -8});
   CHECK(xs(h.plan(frame_at(20.0, cam, 3))) == std::vector<double>{16, -16, 0});
 }
@@ -200,8 +200,8 @@ TEST_CASE("cascades: DDGI hysteresis follows its closed form at any frame rate",
     const glm::dvec3 cam{0, 0, 1.5}, at{0, 0, 8};
     const float a = 1.0f, b = 1.2f, c = 0.5f;
     // The first capture is taken as is (no hysteresis on a never-captured probe).
-    capture_all(g, frame_at(0.0, cam, 1, fps), [&](const glm::dvec3&) { return flat_sh(a); });
-    CHECK(g.lookup(at).sh == flat_sh(a));
+    capture_all(g, frame_at(0.0, cam, 1, fps), [&](const glm::dvec3&) { return tinted_sh(a); });
+    CHECK(g.lookup(at).sh == tinted_sh(a));
 
     // A small change (20 %, under the 0.25 threshold): value = b + (a - b) 0.97^(60 t).
     double t = 1.0;
@@ -209,8 +209,8 @@ TEST_CASE("cascades: DDGI hysteresis follows its closed form at any frame rate",
     REQUIRE(req.size() == 1);
     g.started(req[0].tag);
     g.update(frame_at(t, cam, 1, fps));
-    g.deliver({req[0].tag, req[0].position, flat_sh(b), t, t});
-    CHECK(g.lookup(at).sh == flat_sh(a));  // usable from the next update
+    g.deliver({req[0].tag, req[0].position, tinted_sh(b), t, t});
+    CHECK(g.lookup(at).sh == tinted_sh(a));  // usable from the next update
     const double t0 = t;
     const int steps = static_cast<int>(std::llround(0.5 * fps));
     for (int i = 0; i < steps; ++i) g.update(frame_at(t += 1.0 / fps, cam, 0, fps));
@@ -223,7 +223,7 @@ TEST_CASE("cascades: DDGI hysteresis follows its closed form at any frame rate",
     CHECK(tau == Approx(0.5472).epsilon(1e-3));
     // It snaps to the target once 99.3 % of the way is done (5 time constants).
     while (t < t0 + 5.0 * tau + 0.05) g.update(frame_at(t += 1.0 / fps, cam, 0, fps));
-    CHECK(g.lookup(at).sh == flat_sh(b));
+    CHECK(g.lookup(at).sh == tinted_sh(b));
     CHECK(g.stats().live_probes == 1);
 
     // A big change (darkening by 58 %): the hysteresis drops to 0.97 - 0.75 = 0.22.
@@ -231,7 +231,7 @@ TEST_CASE("cascades: DDGI hysteresis follows its closed form at any frame rate",
     REQUIRE(req.size() == 1);
     g.started(req[0].tag);
     g.update(frame_at(t, cam, 1, fps));
-    g.deliver({req[0].tag, req[0].position, flat_sh(c), t, t});
+    g.deliver({req[0].tag, req[0].position, tinted_sh(c), t, t});
     CHECK(g.stats().live_probes == 2);  // value and target while it blends
     g.update(frame_at(t += 1.0 / fps, cam, 0, fps));
     const double k1 = std::pow(0.22, 60.0 / fps);
@@ -249,13 +249,13 @@ TEST_CASE("cascades: the brightness clamp limits brightening to 10 % per 60 Hz f
           make_cascades({"levels=1", "nx=1", "ny=1", "nz=1", "vertical_spacing_m=4", "height_m=8",
                          clamp ? "brightness_threshold=0.1" : "brightness_threshold=0"});
       const glm::dvec3 cam{0, 0, 1.5}, at{0, 0, 8};
-      capture_all(g, frame_at(0.0, cam, 1, fps), [](const glm::dvec3&) { return flat_sh(1.0f); });
+      capture_all(g, frame_at(0.0, cam, 1, fps), [](const glm::dvec3&) { return tinted_sh(1.0f); });
       double t = 1.0;
       const auto req = g.plan(frame_at(t, cam, 1, fps));
       REQUIRE(req.size() == 1);
       g.started(req[0].tag);
       g.update(frame_at(t, cam, 1, fps));
-      g.deliver({req[0].tag, req[0].position, flat_sh(10.0f), t, t});  // x 10: a big change
+      g.deliver({req[0].tag, req[0].position, tinted_sh(10.0f), t, t});  // x 10: a big change
       // Big change (x 10): h = 0.22 while the change left is over 25 %; clamped, a step raises the
       // value by at most 10 % per 60 Hz frame; a blend snaps once less than exp(-5) of the way is
       // left.
@@ -346,7 +346,7 @@ TEST_CASE("cascades: trilinear reproduces a linear field exactly, blended levels
     return static_cast<float>(2.0 + 0.05 * p.x - 0.03 * p.y + 0.1 * p.z);
   };
   capture_all(g, frame_at(0.0, {0, 0, 1.5}, 1000),
-              [&](const glm::dvec3& p) { return flat_sh(field(p)); });
+              [&](const glm::dvec3& p) { return tinted_sh(field(p)); });
   CHECK(g.relocated_count() == 0);
   struct Case {
     glm::dvec3 p;
@@ -460,13 +460,13 @@ TEST_CASE("cascades: with fade_in a first capture blends in from the lookup it r
         make_cascades({"levels=1", "nx=2", "ny=1", "nz=1", "spacing_m=8", "vertical_spacing_m=4",
                        "height_m=8", fade ? "fade_in=true" : "fade_in=false"});
     const glm::dvec3 cam{1, 0, 1.5}, at{8, 0, 8};
-    capture_all(g, frame_at(0.0, cam, 1), [](const glm::dvec3&) { return flat_sh(3.0f); });
-    CHECK(g.lookup(at).sh == flat_sh(3.0f));  // its cell's one corner with data
+    capture_all(g, frame_at(0.0, cam, 1), [](const glm::dvec3&) { return tinted_sh(3.0f); });
+    CHECK(g.lookup(at).sh == tinted_sh(3.0f));  // its cell's one corner with data
     const auto req =
-        capture_all(g, frame_at(1.0, cam, 1), [](const glm::dvec3&) { return flat_sh(2.8f); });
+        capture_all(g, frame_at(1.0, cam, 1), [](const glm::dvec3&) { return tinted_sh(2.8f); });
     REQUIRE(req.size() == 1);
     CHECK(req[0].position == glm::dvec3(8, 0, 8));
-    CHECK(g.lookup(at).sh == (fade ? flat_sh(3.0f) : flat_sh(2.8f)));
+    CHECK(g.lookup(at).sh == (fade ? tinted_sh(3.0f) : tinted_sh(2.8f)));
     double t = 1.0;
     for (int i = 0; i < 30; ++i) g.update(frame_at(t += 1.0 / 60.0, cam, 0));
     const double expect = fade ? 2.8 + 0.2 * std::pow(0.97, 30.0) : 2.8;

@@ -22,7 +22,7 @@ PerObjectPlanner make_per_object(const std::vector<std::string>& sets) {
   return PerObjectPlanner(planner_params_from_cli("per_object", sets));
 }
 
-Sh9Rgb flat_sh(float v) {
+Sh9Rgb grey_sh(float v) {
   Sh9Rgb s;
   s.c[0] = Rgb(v, v, v);
   return s;
@@ -83,7 +83,7 @@ struct FakeLoop {
     if (!flights.empty() && flights.front().faces == 6) {
       const Flight f = flights.front();
       flights.erase(flights.begin());
-      planner.deliver({f.req.tag, f.req.position, flat_sh(1.0f), f.requested, t});
+      planner.deliver({f.req.tag, f.req.position, grey_sh(1.0f), f.requested, t});
       ++delivered;
     }
   }
@@ -141,11 +141,11 @@ TEST_CASE("per_object: own capture at a receiver, nearest receiver's capture els
   for (const auto& r : req) p.started(r.tag);
   CHECK(p.backlog() == 1);  // c waits
   p.update(frame_at(0.0, 0.1, 0));
-  p.deliver({req[0].tag, a, flat_sh(1.0f), 0.0, 0.6});
-  p.deliver({req[1].tag, b, flat_sh(2.0f), 0.0, 0.6});
+  p.deliver({req[0].tag, a, grey_sh(1.0f), 0.0, 0.6});
+  p.deliver({req[1].tag, b, grey_sh(2.0f), 0.0, 0.6});
 
   const LookupResult la = p.lookup(a);
-  CHECK(la.sh == flat_sh(1.0f));
+  CHECK(la.sh == grey_sh(1.0f));
   CHECK(la.spacing_m == 0.0);
   CHECK_FALSE(la.fell_back);
   REQUIRE(la.contributor_count == 1);
@@ -153,11 +153,11 @@ TEST_CASE("per_object: own capture at a receiver, nearest receiver's capture els
   CHECK(la.data_time == 0.0);
   // A demand point 7 m from b gets b's capture, spacing 7.
   const LookupResult d = p.lookup({20, 7, 1});
-  CHECK(d.sh == flat_sh(2.0f));
+  CHECK(d.sh == grey_sh(2.0f));
   CHECK(d.spacing_m == Approx(7.0));
   // c has no capture yet: its nearest captured neighbour (b) answers, 20 m away.
   const LookupResult lc = p.lookup(c);
-  CHECK(lc.sh == flat_sh(2.0f));
+  CHECK(lc.sh == grey_sh(2.0f));
   CHECK(lc.spacing_m == Approx(20.0));
   CHECK(p.stats().live_probes == 2);
 }
@@ -172,8 +172,8 @@ TEST_CASE(
   auto req = p.plan(frame_at(0.0, 0.1, 5));
   REQUIRE(req.size() == 2);
   for (const auto& r : req) p.started(r.tag);
-  p.deliver({req[0].tag, a, flat_sh(1.0f), 0.0, 0.5});
-  p.deliver({req[1].tag, b, flat_sh(2.0f), 0.0, 0.5});
+  p.deliver({req[0].tag, a, grey_sh(1.0f), 0.0, 0.5});
+  p.deliver({req[1].tag, b, grey_sh(2.0f), 0.0, 0.5});
   // Nothing due: moved 4.9 m, age 1 s.
   p.set_receivers({{1, a + glm::dvec3(4.9, 0, 0), {}}, {2, b, {}}});
   CHECK(p.plan(frame_at(1.0, 0.1, 5)).empty());
@@ -201,7 +201,7 @@ TEST_CASE("per_object: despawned receivers are forgotten with their capture", "[
   auto req = p.plan(frame_at(0.0, 0.1, 2));
   REQUIRE(req.size() == 2);
   for (const auto& r : req) p.started(r.tag);
-  p.deliver({req[0].tag, a, flat_sh(1.0f), 0.0, 0.5});
+  p.deliver({req[0].tag, a, grey_sh(1.0f), 0.0, 0.5});
   const std::int64_t bytes_two = p.stats().bytes;
   CHECK(p.stats().live_probes == 1);
 
@@ -213,7 +213,7 @@ TEST_CASE("per_object: despawned receivers are forgotten with their capture", "[
   CHECK(p.lookup(a).fell_back);  // a's capture is gone
 
   p.set_receivers({{3, {60, 0, 1}, {}}});
-  p.deliver({req[1].tag, b, flat_sh(2.0f), 0.0, 0.5});  // b is gone: dropped
+  p.deliver({req[1].tag, b, grey_sh(2.0f), 0.0, 0.5});  // b is gone: dropped
   CHECK(p.stats().live_probes == 0);
   CHECK(p.lookup(b).fell_back);
   CHECK(p.backlog() == 1);

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <functional>
+#include <numbers>
 
 #include "policies/baselines/relit.h"
 #include "policies/core/default_ambient.h"
@@ -24,8 +25,7 @@ using namespace ambisim;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;
+constexpr double kDeg = std::numbers::pi / 180.0;
 
 // A set whose 27 values are all different and non-zero.
 Sh9Rgb distinct_sh(float base) {
@@ -131,11 +131,12 @@ TEST_CASE("relit: the transfer's sky visibility and ground irradiance in closed 
   const LightingInfo l = light_of(kSky, kSun, 30.0);
   // G = pi A + E sin 30.
   const Rgb g = relit_ground_irradiance(l);
-  for (int ch = 0; ch < 3; ++ch) CHECK(g[ch] == Approx(kPi * kSky[ch] + 0.5 * kSun[ch]));
+  for (int ch = 0; ch < 3; ++ch)
+    CHECK(g[ch] == Approx(std::numbers::pi * kSky[ch] + 0.5 * kSun[ch]));
   // The sun below the horizon gives nothing, whatever its irradiance says.
   LightingInfo night = l;
   night.sun_on = false;
-  CHECK(relit_ground_irradiance(night).x == Approx(kPi * kSky.x));
+  CHECK(relit_ground_irradiance(night).x == Approx(std::numbers::pi * kSky.x));
   // v: the share of the open sky's upward irradiance the capture sees.
   for (float v : {0.0f, 0.3f, 1.0f}) {
     CHECK(relit_sky_visibility(hemisphere_sh(kSky * v, kGround), l.sky_sh) ==
@@ -234,20 +235,21 @@ TEST_CASE("relit: a change of the sun's colour or height moves the bounce, not t
     const Sh9Rgb got = rig.planner->lookup({0, 0, 0}).sh;
 
     const Rgb g0 = relit_ground_irradiance(before), g1 = relit_ground_irradiance(c.after);
-    const Rgb sky1 = c.after.sky_sh.c[0] / static_cast<float>(2.0 * kPi * kShY00);  // A'
+    const Rgb sky1 =
+        c.after.sky_sh.c[0] / static_cast<float>(2.0 * std::numbers::pi * kShY00);  // A'
     const Rgb g = g1 / g0;
     check_sh(got, hemisphere_sh(sky1 * v, kGround * g));
     const Rgb up = sh_irradiance(got, {0, 0, 1}), down = sh_irradiance(got, {0, 0, -1});
     for (int ch = 0; ch < 3; ++ch) {
-      CHECK(up[ch] == Approx(kPi * v * sky1[ch]).epsilon(1e-5));
-      CHECK(down[ch] == Approx(kPi * kGround[ch] * g[ch]).epsilon(1e-5));
+      CHECK(up[ch] == Approx(std::numbers::pi * v * sky1[ch]).epsilon(1e-5));
+      CHECK(down[ch] == Approx(std::numbers::pi * kGround[ch] * g[ch]).epsilon(1e-5));
     }
   }
   // The orange sun in numbers: the bounce's red keeps its share, its blue loses 4/5 of the sun.
   const Rgb g = relit_ground_irradiance(light_of(kSky, orange, 30.0)) /
                 relit_ground_irradiance(light_of(kSky, kSun, 30.0));
   CHECK(g.x == Approx(1.0));
-  CHECK(g.z == Approx((kPi * 0.8 + 0.55) / (kPi * 0.8 + 2.55)));
+  CHECK(g.z == Approx((std::numbers::pi * 0.8 + 0.55) / (std::numbers::pi * 0.8 + 2.55)));
 }
 
 TEST_CASE("relit never recaptures a probe for lighting", "[policies][relit]") {
@@ -255,7 +257,7 @@ TEST_CASE("relit never recaptures a probe for lighting", "[policies][relit]") {
   // never changes: a hovering camera captures once, a camera pacing 40 m back and forth captures
   // its stretch once, and both count the same captures in both lights.
   const auto day = [](double t) {
-    const double el = -10.0 + 70.0 * std::sin(kPi * t / 200.0);
+    const double el = -10.0 + 70.0 * std::sin(std::numbers::pi * t / 200.0);
     const float k = static_cast<float>(std::max(0.02, std::sin(std::max(el, 1.0) * kDeg)));
     return light_of(kSky * k, kSun, el);
   };
@@ -265,7 +267,7 @@ TEST_CASE("relit never recaptures a probe for lighting", "[policies][relit]") {
     for (int changing = 0; changing < 2; ++changing) {
       Rig rig(changing ? std::function<LightingInfo(double)>(day) : [&](double) { return noon; });
       for (int i = 0; i < 12000; ++i) {
-        const double x = pacing ? 20.0 - 20.0 * std::cos(2.0 * kPi * i / 1200.0) : 0.0;
+        const double x = pacing ? 20.0 - 20.0 * std::cos(2.0 * std::numbers::pi * i / 1200.0) : 0.0;
         counts[changing] += static_cast<std::int64_t>(
             rig.step({x, 0, 0}, [&](const CaptureRequest&) { return distinct_sh(1.0f); }).size());
       }

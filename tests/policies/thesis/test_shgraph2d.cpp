@@ -13,7 +13,7 @@ namespace {
 
 double terrain(double x, double y) { return 10.0 + 0.2 * x - 0.1 * y; }
 
-Sh9Rgb field(const glm::dvec3& p) {
+Sh9Rgb field2d(const glm::dvec3& p) {
   Sh9Rgb s;
   s.c[0] = Rgb(static_cast<float>(1.0 + 0.01 * p.x), static_cast<float>(1.0 + 0.01 * p.y), 1.0f);
   return s;
@@ -56,7 +56,7 @@ struct Sheet {
         const CaptureRequest r = flights.front().first;
         flights.clear();
         captured[r.tag] = r.position;
-        core.deliver({r.tag, r.position, field(r.position), c.time - 5 * dt, c.time});
+        core.deliver({r.tag, r.position, field2d(r.position), c.time - 5 * dt, c.time});
       }
     }
   }
@@ -134,7 +134,7 @@ TEST_CASE("shgraph2d: 9 children, 4 links in pairs, one set per quadrant by hori
       CHECK(static_cast<int>(quadrants.size()) == r.contributor_count);
       // Height does not enter: the same answer 40 m up.
       CHECK(s.core.lookup(p + glm::dvec3(0.0, 0.0, 40.0)).sh == r.sh);
-      CHECK(std::abs(r.sh.c[0].x - field(p).c[0].x) < 0.03f);
+      CHECK(std::abs(r.sh.c[0].x - field2d(p).c[0].x) < 0.03f);
     }
   }
   CHECK(four > 10);

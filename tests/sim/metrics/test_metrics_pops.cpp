@@ -13,13 +13,13 @@ using namespace ambisim;
 using ambisim::test::feed;
 using ambisim::test::grey_of_lightness;
 using ambisim::test::grey_value_of_lightness;
+using ambisim::test::kFps;
 using ambisim::test::unit_settings;
 
 namespace {
 
 constexpr double kDeTol = 1e-9;       // dE00 of greys round-tripped through Lab
 constexpr double kMinuteTol = 1e-12;  // receiver-minutes summed from 1/60 s steps
-constexpr double kFps = 60.0;
 
 // dE00 between two greys of lightness a and b (a* = b* = 0): |a - b| / S_L with
 // S_L = 1 + 0.015 (Lm - 50)^2 / sqrt(20 + (Lm - 50)^2), Lm the mean lightness (CIE 142-2001).

@@ -10,11 +10,11 @@
 using namespace ambisim;
 using ambisim::test::feed;
 using ambisim::test::grey_of_lightness;
+using ambisim::test::kFps;
 using ambisim::test::unit_settings;
 
 namespace {
 
-constexpr double kFps = 60.0;
 constexpr double kTimeTol = 1e-9;  // s, sums of 1/60 s steps
 
 // One receiver over `frames` frames; the truth steps from L 40 to 70 at frame 60, the planner

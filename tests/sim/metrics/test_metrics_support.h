@@ -10,6 +10,8 @@
 
 namespace ambisim::test {
 
+inline constexpr double kFps = 60.0;  // the frame rate of the metrics tests
+
 // The grey irradiance (v, v, v) whose displayed CIELAB lightness is L (8 < L < 100) at
 // `exposure`: invert L* = 116 f(Y_d) - 16, then Reinhard Y_d = Y / (1 + Y), Y = v exposure.
 // (A grey's luminance is v: the Y row of the sRGB matrix sums to 1.)

@@ -10,13 +10,13 @@
 
 using namespace ambisim;
 using ambisim::test::grey_of_lightness;
+using ambisim::test::kFps;
 using ambisim::test::served_lookup;
 using ambisim::test::unit_settings;
 
 namespace {
 
-constexpr double kFps = 60.0;
-constexpr double kDeTol = 1e-3;  // dE00 of float greys (L round-trips to ~1e-4)
+constexpr double kGreyDeTol = 1e-3;  // dE00 of float greys (L round-trips to ~1e-4)
 
 // axes6 order: +x, -x, +y, -y, +z, -z.
 constexpr std::size_t kUp = 4, kDown = 5;
@@ -28,7 +28,7 @@ std::vector<Rgb> greys(double base, std::size_t k, double at) {
   return v;
 }
 
-double grey_de(double a, double b) { return ciede2000(Lab{a, 0, 0}, Lab{b, 0, 0}); }
+double grey_de00(double a, double b) { return ciede2000(Lab{a, 0, 0}, Lab{b, 0, 0}); }
 
 const ReceiverViewing kFromAbove{1e-3, {0.0, 0.0, 1.0}};  // seen from straight above
 
@@ -42,18 +42,18 @@ TEST_CASE("viewed error weighs the normals the camera sees, uniform error all", 
   m.receiver(1, greys(50, kDown, 60), truth, served_lookup(), kFromAbove);
   m.end_frame();
   const Summary s = m.summary();
-  CHECK(s.de2000.max == Approx(grey_de(50, 60)).margin(kDeTol));
-  CHECK(s.de2000.mean == Approx(grey_de(50, 60) / 6.0).margin(kDeTol));
-  CHECK(s.de2000_viewed.mean == Approx(0.0).margin(kDeTol));
-  CHECK(s.de2000_viewed.max == Approx(0.0).margin(kDeTol));
+  CHECK(s.de2000.max == Approx(grey_de00(50, 60)).margin(kGreyDeTol));
+  CHECK(s.de2000.mean == Approx(grey_de00(50, 60) / 6.0).margin(kGreyDeTol));
+  CHECK(s.de2000_viewed.mean == Approx(0.0).margin(kGreyDeTol));
+  CHECK(s.de2000_viewed.max == Approx(0.0).margin(kGreyDeTol));
 
   // The same error on the up normal is all that the viewed metrics see.
   RunMetrics up(unit_settings());
   up.begin_frame(0, 0.0, 1.0 / kFps);
   up.receiver(1, greys(50, kUp, 60), truth, served_lookup(), kFromAbove);
   up.end_frame();
-  CHECK(up.summary().de2000_viewed.mean == Approx(grey_de(50, 60)).margin(kDeTol));
-  CHECK(up.summary().de2000_viewed.p95 == Approx(grey_de(50, 60)).margin(kDeTol));
+  CHECK(up.summary().de2000_viewed.mean == Approx(grey_de00(50, 60)).margin(kGreyDeTol));
+  CHECK(up.summary().de2000_viewed.p95 == Approx(grey_de00(50, 60)).margin(kGreyDeTol));
 }
 
 TEST_CASE("viewed error weighs receivers by their screen weight", "[metrics]") {
@@ -67,10 +67,10 @@ TEST_CASE("viewed error weighs receivers by their screen weight", "[metrics]") {
   m.receiver(3, wrong, truth, served_lookup(), {});
   m.end_frame();
   const Summary s = m.summary();
-  CHECK(s.de2000_viewed.mean == Approx(grey_de(50, 60) / 4.0).margin(kDeTol));
+  CHECK(s.de2000_viewed.mean == Approx(grey_de00(50, 60) / 4.0).margin(kGreyDeTol));
   // The weighted p95: receiver 2 holds a quarter of the weight, above the 5 % tail.
-  CHECK(s.de2000_viewed.p95 == Approx(grey_de(50, 60)).margin(kDeTol));
-  CHECK(s.de2000.mean == Approx(grey_de(50, 60) * 2.0 / 3.0).margin(kDeTol));
+  CHECK(s.de2000_viewed.p95 == Approx(grey_de00(50, 60)).margin(kGreyDeTol));
+  CHECK(s.de2000.mean == Approx(grey_de00(50, 60) * 2.0 / 3.0).margin(kGreyDeTol));
   CHECK(s.viewed_receiver_minutes == Approx(4e-3 / kFps / 60.0).epsilon(1e-12));
 }
 
@@ -112,5 +112,5 @@ TEST_CASE("viewed pops count per viewed receiver-minute: unseen receivers never 
   CHECK(s.pops_viewed.count == 2);
   const double viewed_minutes = 120.0 * 3e-3 / kFps / 60.0;
   CHECK(s.pops_viewed.per_min == Approx(3e-3 / viewed_minutes).epsilon(1e-12));
-  CHECK(s.pops_viewed.max == Approx(grey_de(50, 60)).margin(kDeTol));
+  CHECK(s.pops_viewed.max == Approx(grey_de00(50, 60)).margin(kGreyDeTol));
 }

@@ -1,6 +1,7 @@
 // Captures against the analytic disc world and basic contracts.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <numbers>
 
 #include <glm/geometric.hpp>
 
@@ -10,8 +11,6 @@
 using namespace ambisim;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Irradiance of a cube map on a plane with unit normal n: sum L max(0, n.w) dOmega.
 glm::dvec3 irradiance(const CubeMap& m, const glm::dvec3& n) {
@@ -63,7 +62,7 @@ TEST_CASE("disc oracle: downward and upward irradiance of a 64x64 capture", "[ca
     CHECK(down.y == Approx(ref * disc.y).epsilon(kRendererTol));
     // (2) The closed form pi L R^2 / (R^2 + h^2): adds the 64^2 cube quadrature of the disc
     //     edge. Measured relative errors -9.5e-4 / +1.6e-3 / +3.6e-3 at h = 2 / 6 / 12.
-    const double expect = kPi * r * r / (r * r + h * h);
+    const double expect = std::numbers::pi * r * r / (r * r + h * h);
     constexpr double kClosedFormTol = 6e-3;
     CHECK(down.x == Approx(expect * disc.x).epsilon(kClosedFormTol));
     CHECK(down.y == Approx(expect * disc.y).epsilon(kClosedFormTol));
@@ -71,7 +70,7 @@ TEST_CASE("disc oracle: downward and upward irradiance of a 64x64 capture", "[ca
     // Upward: the uniform sky alone, pi S; cube quadrature of the clamped cosine: measured
     // relative error 8.0e-5.
     constexpr double kSkyTol = 2e-4;
-    CHECK(up.x == Approx(kPi * sky.x).epsilon(kSkyTol));
+    CHECK(up.x == Approx(std::numbers::pi * sky.x).epsilon(kSkyTol));
   }
 }
 

@@ -34,7 +34,7 @@ CameraPathRecord straight(glm::dvec3 a, glm::dvec3 b, double speed) {
   return r;
 }
 
-CameraPathRecord parse_json(const char* text) {
+CameraPathRecord parse_camera_path(const char* text) {
   const auto j = nlohmann::json::parse(text);
   ObjectReader r(j, "test.json", "/camera");
   return parse_camera_path(r);
@@ -86,7 +86,7 @@ TEST_CASE("a speed ramp over time integrates to the closed-form distance", "[cam
 
 TEST_CASE("a speed profile over distance integrates exponentially", "[camera]") {
   // v(s) = 10 + 0.1 s up to s = 200 (30 m/s): s(t) = 100 (e^{0.1 t} - 1), reached at ln 3 / 0.1.
-  const auto r = parse_json(R"({"points": [[0,0,0],[5000,0,0]],
+  const auto r = parse_camera_path(R"({"points": [[0,0,0],[5000,0,0]],
       "speed_profile": [{"arc_length_m": 0, "speed_mps": 10}, {"arc_length_m": 200, "speed_mps": 30}]})");
   const CameraPath path(r, flat());
   const double t200 = std::log(3.0) / 0.1;
@@ -169,7 +169,7 @@ TEST_CASE("road path keeps its lane offset and height on straight and curved roa
 }
 
 TEST_CASE("explicit cuts jump on the exact frame with cut = true", "[camera]") {
-  const auto r = parse_json(R"({"points": [[0,0,0],[5000,0,0]], "speed_mps": 10,
+  const auto r = parse_camera_path(R"({"points": [[0,0,0],[5000,0,0]], "speed_mps": 10,
       "cuts": [{"time_s": 2.5, "to_arc_length_m": 700},
                {"time_s": 4.0, "jump_ahead_m": 100},
                {"time_s": 6.0, "to_position": [3000, 40, 0]}]})");
@@ -198,7 +198,7 @@ TEST_CASE("explicit cuts jump on the exact frame with cut = true", "[camera]") {
 
 TEST_CASE("periodic cuts jump ahead or cycle through targets", "[camera]") {
   SECTION("jump ahead every 10 s") {
-    const auto r = parse_json(R"({"points": [[0,0,0],[5000,0,0]], "speed_mps": 10,
+    const auto r = parse_camera_path(R"({"points": [[0,0,0],[5000,0,0]], "speed_mps": 10,
         "periodic_cut": {"every_s": 10, "jump_ahead_m": 500}})");
     const CameraPath path(r, flat());
     int cuts = 0;
@@ -213,7 +213,7 @@ TEST_CASE("periodic cuts jump ahead or cycle through targets", "[camera]") {
     CHECK(path.state(35.0, 35.0).position.x == Approx(1850.0).epsilon(kStraightRel));
   }
   SECTION("targets cycle") {
-    const auto r = parse_json(R"({"points": [[0,0,0],[5000,0,0]], "speed_mps": 10,
+    const auto r = parse_camera_path(R"({"points": [[0,0,0],[5000,0,0]], "speed_mps": 10,
         "periodic_cut": {"every_s": 5, "first_s": 1, "targets_m": [1000, 2000]}})");
     const CameraPath path(r, flat());
     CHECK(path.state(1.0, 0.99).cut);
@@ -242,7 +242,7 @@ TEST_CASE("looping: an open course cuts on the wrap, a closed one does not", "[c
 TEST_CASE("keyframe z above ground adds the ground height at the points", "[camera]") {
   TerrainQueries slope;
   slope.ground_height = [](double x, double) { return 0.1 * x; };
-  const auto r = parse_json(R"({"points": [[0,0,20],[1000,0,20]], "z_mode": "above_ground",
+  const auto r = parse_camera_path(R"({"points": [[0,0,20],[1000,0,20]], "z_mode": "above_ground",
       "speed_mps": 80})");
   const CameraState s = CameraPath(r, slope).state(5.0, 5.0);
   // The straight segment from (0,0,20) to (1000,0,120): 400 m of arc is at x = 400 / 1.005.
@@ -250,21 +250,22 @@ TEST_CASE("keyframe z above ground adds the ground height at the points", "[came
 }
 
 TEST_CASE("camera path JSON errors name the path", "[camera]") {
-  CHECK_THROWS_WITH(parse_json(R"({"points": [[0,0,0],[1,0,0]], "speed_mps": 1, "sped": 2})"),
-                    Catch::Contains("/camera/sped"));
-  CHECK_THROWS_WITH(parse_json(R"({"points": [[0,0,0],[1,0]], "speed_mps": 1})"),
+  CHECK_THROWS_WITH(
+      parse_camera_path(R"({"points": [[0,0,0],[1,0,0]], "speed_mps": 1, "sped": 2})"),
+      Catch::Contains("/camera/sped"));
+  CHECK_THROWS_WITH(parse_camera_path(R"({"points": [[0,0,0],[1,0]], "speed_mps": 1})"),
                     Catch::Contains("/camera/points/1"));
-  CHECK_THROWS_WITH(parse_json(R"({"points": [[0,0,0],[1,0,0]]})"),
+  CHECK_THROWS_WITH(parse_camera_path(R"({"points": [[0,0,0],[1,0,0]]})"),
                     Catch::Contains("exactly one of speed_mps or speed_profile"));
   CHECK_THROWS_WITH(
-      parse_json(R"({"points": [[0,0,0],[1,0,0]], "speed_mps": 1, "lane_offset_m": 2})"),
+      parse_camera_path(R"({"points": [[0,0,0],[1,0,0]], "speed_mps": 1, "lane_offset_m": 2})"),
       Catch::Contains("/camera/lane_offset_m"));
-  CHECK_THROWS_WITH(parse_json(R"({"type": "road", "speed_mps": 1, "direction": 0})"),
+  CHECK_THROWS_WITH(parse_camera_path(R"({"type": "road", "speed_mps": 1, "direction": 0})"),
                     Catch::Contains("+1 or -1"));
-  CHECK_THROWS_WITH(parse_json(R"({"points": [[0,0,0],[1,0,0]], "speed_mps": 1,
+  CHECK_THROWS_WITH(parse_camera_path(R"({"points": [[0,0,0],[1,0,0]], "speed_mps": 1,
       "cuts": [{"time_s": 2, "jump_ahead_m": 1}, {"time_s": 1, "jump_ahead_m": 1}]})"),
                     Catch::Contains("/camera/cuts/1/time_s"));
-  CHECK_THROWS_WITH(parse_json(R"({"points": [[0,0,0],[1,0,0]], "speed_profile": [
+  CHECK_THROWS_WITH(parse_camera_path(R"({"points": [[0,0,0],[1,0,0]], "speed_profile": [
       {"arc_length_m": 0, "speed_mps": 0}]})"),
                     Catch::Contains("/camera/speed_profile/0/speed_mps"));
 }

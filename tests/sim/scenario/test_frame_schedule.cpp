@@ -19,7 +19,7 @@ FrameSchedule make(std::vector<FpsSegment> segments, double duration) {
   return FrameSchedule(r);
 }
 
-FrameScheduleRecord parse_json(const char* text) {
+FrameScheduleRecord parse_schedule(const char* text) {
   const auto j = nlohmann::json::parse(text);
   ObjectReader r(j, "test.json", "/frames");
   return parse_frame_schedule(r);
@@ -44,7 +44,7 @@ TEST_CASE("constant frame rate gives duration x fps frames with equal steps", "[
 
 TEST_CASE("100 -> 10 -> 100 fps gives the exact number of frames", "[frames]") {
   // 5 s at 100, 5 s at 10, 5 s at 100: 500 + 50 + 500.
-  const auto rec = parse_json(R"({"duration_s": 15, "segments": [
+  const auto rec = parse_schedule(R"({"duration_s": 15, "segments": [
       {"from_s": 0, "fps": 100}, {"from_s": 5, "fps": 10}, {"from_s": 10, "fps": 100}]})");
   const FrameSchedule s(rec);
   CHECK(s.frame_count() == 1050);
@@ -89,11 +89,12 @@ TEST_CASE("frame times do not drift over a million frames", "[frames]") {
 }
 
 TEST_CASE("frame schedule JSON errors name the path", "[frames]") {
-  CHECK(FrameSchedule(parse_json(R"({"fps": 25, "duration_s": 2})")).frame_count() == 50);
-  CHECK_THROWS_WITH(parse_json(R"({"fps": 0})"), Catch::Contains("/frames/fps"));
-  CHECK_THROWS_WITH(parse_json(R"({"segments": [{"from_s": 1, "fps": 10}]})"),
+  CHECK(FrameSchedule(parse_schedule(R"({"fps": 25, "duration_s": 2})")).frame_count() == 50);
+  CHECK_THROWS_WITH(parse_schedule(R"({"fps": 0})"), Catch::Contains("/frames/fps"));
+  CHECK_THROWS_WITH(parse_schedule(R"({"segments": [{"from_s": 1, "fps": 10}]})"),
                     Catch::Contains("/frames/segments/0/from_s"));
-  CHECK_THROWS_WITH(parse_json(R"({"segments": [{"from_s": 0, "fps": 10, "ramp_to_next": true}]})"),
-                    Catch::Contains("ramp_to_next"));
-  CHECK_THROWS_WITH(parse_json(R"({"fps": 10, "fsp": 2})"), Catch::Contains("/frames/fsp"));
+  CHECK_THROWS_WITH(
+      parse_schedule(R"({"segments": [{"from_s": 0, "fps": 10, "ramp_to_next": true}]})"),
+      Catch::Contains("ramp_to_next"));
+  CHECK_THROWS_WITH(parse_schedule(R"({"fps": 10, "fsp": 2})"), Catch::Contains("/frames/fsp"));
 }

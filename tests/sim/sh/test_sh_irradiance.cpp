@@ -11,7 +11,6 @@ using namespace ambisim;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 // Constant radiance: E / (pi L) - 1, measured 1.0e-7 (fast, float tables) and 5.1e-8
 // (naive) over 26 normals at N = 16; the same for the thesis' uniform weights.
 constexpr double kConstantRelTol = 1e-6;
@@ -25,8 +24,8 @@ constexpr double kSkyGroundTol64 = 5e-5;
 constexpr double kDirectionalTol = 1e-6;
 
 Rgb sky_ground_closed_form(const Rgb& sky, const Rgb& ground, double cos_theta) {
-  return Rgb(kPi * (glm::dvec3(sky) * (1.0 + cos_theta) / 2.0 +
-                    glm::dvec3(ground) * (1.0 - cos_theta) / 2.0));
+  return Rgb(std::numbers::pi * (glm::dvec3(sky) * (1.0 + cos_theta) / 2.0 +
+                                 glm::dvec3(ground) * (1.0 - cos_theta) / 2.0));
 }
 
 // L2 approximation of the irradiance of a unit directional light, normalised so that the
@@ -45,7 +44,7 @@ TEST_CASE("constant radiance gives E = pi L for every normal", "[sh][irradiance]
       for (const Sh9Rgb* sh : {&fast, &naive}) {
         const Rgb e = sh_irradiance(*sh, n);
         for (int ch = 0; ch < 3; ++ch) {
-          CHECK(std::abs(e[ch] / (kPi * l[ch]) - 1.0) < kConstantRelTol);
+          CHECK(std::abs(e[ch] / (std::numbers::pi * l[ch]) - 1.0) < kConstantRelTol);
         }
       }
     }
@@ -63,9 +62,9 @@ TEST_CASE("sky above ground below gives the closed-form irradiance", "[sh][irrad
     const Sh9Rgb uniform = projector_for(n, TexelWeighting::uniform_thesis).project(cube);
     const double tol = n == 16 ? kSkyGroundTol16 : kSkyGroundTol64;
     for (int a = 0; a < 8; ++a) {
-      const double phi = 2.0 * kPi * a / 8.0 + 0.1;
+      const double phi = 2.0 * std::numbers::pi * a / 8.0 + 0.1;
       for (int k = 0; k <= 36; ++k) {
-        const double theta = kPi * k / 36.0;
+        const double theta = std::numbers::pi * k / 36.0;
         const glm::dvec3 normal(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
                                 std::cos(theta));
         const Rgb want = sky_ground_closed_form(sky, ground, std::cos(theta));
@@ -73,12 +72,13 @@ TEST_CASE("sky above ground below gives the closed-form irradiance", "[sh][irrad
         const Rgb e_uniform = sh_irradiance(uniform, normal);
         for (int ch = 0; ch < 3; ++ch) {
           INFO("N = " << n << " theta " << theta << " phi " << phi);
-          CHECK(std::abs(e_fast[ch] - want[ch]) / kPi < tol);
-          CHECK(std::abs(e_naive[ch] - want[ch]) / kPi < tol);
+          CHECK(std::abs(e_fast[ch] - want[ch]) / std::numbers::pi < tol);
+          CHECK(std::abs(e_naive[ch] - want[ch]) / std::numbers::pi < tol);
           if (n == 16) {
-            max_err_exact16 = std::max(max_err_exact16, std::abs(e_naive[ch] - want[ch]) / kPi);
+            max_err_exact16 =
+                std::max(max_err_exact16, std::abs(e_naive[ch] - want[ch]) / std::numbers::pi);
             max_err_uniform16 =
-                std::max(max_err_uniform16, std::abs(e_uniform[ch] - want[ch]) / kPi);
+                std::max(max_err_uniform16, std::abs(e_uniform[ch] - want[ch]) / std::numbers::pi);
           }
         }
       }
@@ -101,7 +101,7 @@ TEST_CASE("directional light shows the known L2 ringing", "[sh][irradiance]") {
   double min_e = 1e9, t_at_min = 0.0;
   constexpr int kSteps = 20000;
   for (int s = 0; s <= kSteps; ++s) {
-    const double a = kPi * s / kSteps;  // sweep n from d to -d through e
+    const double a = std::numbers::pi * s / kSteps;  // sweep n from d to -d through e
     const glm::dvec3 normal = std::cos(a) * d + std::sin(a) * e;
     const double got = sh_irradiance(sh, normal).y;
     CHECK(std::abs(got - directional_l2(std::cos(a))) < kDirectionalTol);

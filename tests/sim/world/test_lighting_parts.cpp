@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include <glm/geometric.hpp>
 
@@ -17,12 +18,6 @@
 #include "sim/world/world.h"
 
 using namespace ambisim;
-
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-}  // namespace
 
 TEST_CASE("clouds: the cover fraction asked for, drifting with the wind", "[world][clouds]") {
   for (double coverage : {0.2, 0.4, 0.7}) {
@@ -151,8 +146,8 @@ TEST_CASE("a moving sun's shadows: interpolated key maps against the exact map",
   const World w(wp);
   const auto sun_at = [](double t) {
     SunShadows::Sun s;
-    const double el = (30.0 - 24.0 * t / 120.0) * kPi / 180.0;
-    const double az = (200.0 + 30.0 * t / 120.0) * kPi / 180.0;
+    const double el = (30.0 - 24.0 * t / 120.0) * std::numbers::pi / 180.0;
+    const double az = (200.0 + 30.0 * t / 120.0) * std::numbers::pi / 180.0;
     s.dir = {std::sin(az) * std::cos(el), std::cos(az) * std::cos(el), std::sin(el)};
     s.on = true;
     return s;

@@ -3,6 +3,7 @@
 // Mitsuba's and Bruneton's implementations) and against physical checks.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <numbers>
 
 #include "sim/world/sky_model.h"
 
@@ -10,11 +11,11 @@ using namespace ambisim;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kTableTol = 1.5e-3;  // kcd/m^2: the tables carry 3 decimals
 
 glm::dvec3 dir(double zenith_deg, double azimuth_deg) {
-  const double z = zenith_deg * kPi / 180.0, a = azimuth_deg * kPi / 180.0;
+  const double z = zenith_deg * std::numbers::pi / 180.0,
+               a = azimuth_deg * std::numbers::pi / 180.0;
   return {std::sin(z) * std::cos(a), std::sin(z) * std::sin(a), std::cos(z)};
 }
 
@@ -31,7 +32,7 @@ TEST_CASE("Preetham: zenith luminance by turbidity and sun zenith", "[world][sky
                       {3, 80, 2.829}, {3, 90, 1.773},  {10, 90, 0.264}, {8, 75, 6.185}};
   for (const Row& r : rows) {
     CAPTURE(r.t, r.theta_deg);
-    CHECK(PreethamSky::zenith_luminance(r.t, r.theta_deg * kPi / 180.0) ==
+    CHECK(PreethamSky::zenith_luminance(r.t, r.theta_deg * std::numbers::pi / 180.0) ==
           Approx(r.yz).margin(kTableTol));
   }
 }
@@ -47,7 +48,7 @@ TEST_CASE("Preetham: zenith chromaticity and the Perez coefficients", "[world][s
                       {10, 30, 0.28458, 0.30828}};
   for (const Row& r : rows) {
     CAPTURE(r.t, r.theta_deg);
-    const double th = r.theta_deg * kPi / 180.0;
+    const double th = r.theta_deg * std::numbers::pi / 180.0;
     CHECK(PreethamSky::zenith_chromaticity(r.t, th, 1) == Approx(r.x).margin(1e-5));
     CHECK(PreethamSky::zenith_chromaticity(r.t, th, 2) == Approx(r.y).margin(1e-5));
   }
@@ -83,7 +84,7 @@ TEST_CASE("Preetham: physical checks", "[world][sky]") {
   for (double t : {2.0, 3.0, 5.0, 8.0, 10.0}) {
     double last = 1e9;
     for (double th = 0.0; th <= 90.0; th += 1.0) {
-      const double y = PreethamSky::zenith_luminance(t, th * kPi / 180.0);
+      const double y = PreethamSky::zenith_luminance(t, th * std::numbers::pi / 180.0);
       CAPTURE(t, th);
       CHECK(y < last);
       last = y;

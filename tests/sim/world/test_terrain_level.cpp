@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -20,8 +21,6 @@
 using namespace ambisim;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 PngSamples image(int w, int h, int channels, int depth) {
   return PngSamples::blank(w, h, channels, depth);
@@ -205,8 +204,9 @@ TEST_CASE("level: a plane is an infinite Lambertian plane, RAW and PNG agree", "
     // sky alone upward, pi S. Cube quadrature of the clamped cosine: 8.0e-5 (test_capture).
     constexpr double kPlaneTol = 2e-4;
     INFO("dz = " << dz);
-    CHECK(irradiance(c, {0, 0, -1}).y == Approx(kPi * albedo * sky.y).epsilon(kPlaneTol));
-    CHECK(irradiance(c, {0, 0, 1}).y == Approx(kPi * sky.y).epsilon(kPlaneTol));
+    CHECK(irradiance(c, {0, 0, -1}).y ==
+          Approx(std::numbers::pi * albedo * sky.y).epsilon(kPlaneTol));
+    CHECK(irradiance(c, {0, 0, 1}).y == Approx(std::numbers::pi * sky.y).epsilon(kPlaneTol));
   }
 }
 
@@ -249,7 +249,7 @@ TEST_CASE("level: a disc of another albedo on black ground matches the disc orac
     for (int k = 0; k < 3; ++k) CHECK(down[k] == Approx(down_flat[k]).epsilon(kFlatWorldTol));
     // The closed form pi L R^2 / (R^2 + h^2) of a Lambertian disc seen from above on its
     // axis; the same tolerance as the oracle test (64^2 quadrature of the disc's edge).
-    const double expect = kPi * r * r / (r * r + hgt * hgt);
+    const double expect = std::numbers::pi * r * r / (r * r + hgt * hgt);
     constexpr double kClosedFormTol = 6e-3;
     for (int k = 0; k < 3; ++k) CHECK(down[k] == Approx(expect * disc[k]).epsilon(kClosedFormTol));
   }

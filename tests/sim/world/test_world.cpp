@@ -1,6 +1,7 @@
 // World generation: parsing, determinism, origin invariance, biomes, lighting oracles.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -17,8 +18,6 @@
 using namespace ambisim;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 WorldParams small_params(std::uint64_t seed = 7, double size = 512.0) {
   WorldParams p;
@@ -200,7 +199,7 @@ TEST_CASE("sky irradiance: uniform closed form and the gradient by brute force",
   const Lighting lu(SunParams{}, uni, FogParams{});
   for (double nz : {-1.0, -0.3, 0.0, 0.42, 1.0}) {
     // Uniform hemisphere on a tilted plane: pi S (1 + cos) / 2 exactly (float storage only).
-    CHECK(lu.sky_irradiance(nz).y == Approx(kPi * (1.0 + nz) / 2.0).epsilon(1e-6));
+    CHECK(lu.sky_irradiance(nz).y == Approx(std::numbers::pi * (1.0 + nz) / 2.0).epsilon(1e-6));
   }
   const SkyParams grad;
   const Lighting lg(SunParams{}, grad, FogParams{});
@@ -211,13 +210,15 @@ TEST_CASE("sky irradiance: uniform closed form and the gradient by brute force",
     glm::dvec3 e(0.0);
     const int nt = 800, np = 800;
     for (int a = 0; a < nt; ++a) {
-      const double th = (a + 0.5) * (kPi / 2.0) / nt;
+      const double th = (a + 0.5) * (std::numbers::pi / 2.0) / nt;
       const glm::dvec3 l(lg.sky_radiance({std::sin(th), 0.0, std::cos(th)}));
       for (int b = 0; b < np; ++b) {
-        const double ph = (b + 0.5) * 2.0 * kPi / np;
+        const double ph = (b + 0.5) * 2.0 * std::numbers::pi / np;
         const glm::dvec3 w{std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)};
         const double c = glm::dot(n, w);
-        if (c > 0.0) e += l * (c * std::sin(th) * (kPi / 2.0 / nt) * (2.0 * kPi / np));
+        if (c > 0.0)
+          e += l *
+               (c * std::sin(th) * (std::numbers::pi / 2.0 / nt) * (2.0 * std::numbers::pi / np));
       }
     }
     return e;
@@ -244,7 +245,7 @@ TEST_CASE("sun direction: compass azimuth and elevation", "[world]") {
   CHECK(e.x == Approx(1.0));
   CHECK(e.y == Approx(0.0).margin(1e-12));
   const glm::dvec3 n = sun_direction(30.0, 0.0);
-  CHECK(n.y == Approx(std::cos(kPi / 6)));
+  CHECK(n.y == Approx(std::cos(std::numbers::pi / 6)));
   CHECK(n.z == Approx(0.5));
 }
 
