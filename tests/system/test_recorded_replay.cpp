@@ -107,7 +107,8 @@ MotionDiff compare_motion(const Scenario& a, const Scenario& b, const World& wor
 
 }  // namespace
 
-TEST_CASE("a recorded scripted camera replays to the same run, byte for byte", "[recorded]") {
+TEST_CASE("a recorded scripted camera replays to the same run, byte for byte",
+          "[recorded][heavy]") {
   const Scenario scripted = scripted_scenario();
   const World& world = test::world_for(scripted);
   const Replay replay(scripted, camera_csv(record_camera(scripted, world)), "exact");

@@ -35,7 +35,7 @@ RunResult run(const Scenario& s, const std::string& planner) {
 }  // namespace
 
 TEST_CASE("the sampled referee's interval holds the full score, and the planner is unaffected",
-          "[referee][sample]") {
+          "[referee][sample][heavy]") {
   const double seconds = 8.0;
   for (const char* planner : {"ambisim", "nearest"}) {
     INFO(planner);

@@ -55,7 +55,7 @@ TEST_CASE("oracle scores near the SH9 ceiling with no pops, constant ambient sco
   CHECK(constant.summary.coverage.mean == 0.0);
 }
 
-TEST_CASE("no planner renders more faces than the budget grants", "[simulation]") {
+TEST_CASE("no planner renders more faces than the budget grants", "[simulation][heavy]") {
   auto& f = fixture();
   for (const auto& info : planner_catalogue()) {
     if (info.name == "oracle") continue;  // the oracle ignores the budget by definition

@@ -245,7 +245,7 @@ TEST_CASE("baked virtual offset never leaves a probe inside the terrain or canop
   }
 }
 
-TEST_CASE("baked never asks for a capture during the run", "[baked]") {
+TEST_CASE("baked never asks for a capture during the run", "[baked][heavy]") {
   static test::SmallDrive f;
   for (const std::string name : {"baked", "baked_tod"}) {
     INFO(name);

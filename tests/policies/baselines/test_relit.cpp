@@ -252,7 +252,7 @@ TEST_CASE("relit: a change of the sun's colour or height moves the bounce, not t
   CHECK(g.z == Approx((std::numbers::pi * 0.8 + 0.55) / (std::numbers::pi * 0.8 + 2.55)));
 }
 
-TEST_CASE("relit never recaptures a probe for lighting", "[policies][relit]") {
+TEST_CASE("relit never recaptures a probe for lighting", "[policies][relit][heavy]") {
   // A day in 200 s (the sun from -10 to 60 deg and back, the sky with it) against a light that
   // never changes: a hovering camera captures once, a camera pacing 40 m back and forth captures
   // its stretch once, and both count the same captures in both lights.
@@ -302,7 +302,7 @@ TEST_CASE("relit never recaptures a probe for lighting", "[policies][relit]") {
 }
 
 TEST_CASE("relit equals nearest wherever the world's global light does not change",
-          "[policies][relit]") {
+          "[policies][relit][heavy]") {
   // The static motorway; cloud_shadows, whose sun and mean sky stay (only the clouds' shadows
   // move); fog_bank, whose fog thickens under a fixed sun: relit sees neither the shadows nor
   // the fog, so relighting changes nothing, and every error, pop and coverage figure is

@@ -50,7 +50,7 @@ class RecordingPlanner final : public Planner {
 
 }  // namespace
 
-TEST_CASE("no planner captures inside terrain or canopy", "[contract][solids]") {
+TEST_CASE("no planner captures inside terrain or canopy", "[contract][solids][heavy]") {
   // Every shipped scenario's first 3 s: the forest edge flight (canopy), the cliffs, the
   // motorway in hills, the imported level.
   const auto scenarios = test::short_scenarios(3.0);

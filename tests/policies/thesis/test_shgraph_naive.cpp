@@ -36,7 +36,7 @@ std::string everything(const Scenario& sc, const Planner& p, const RunResult& r)
 
 }  // namespace
 
-TEST_CASE("SHGraph fast paths give byte-identical results to the naive ones", "[shgraph]") {
+TEST_CASE("SHGraph fast paths give byte-identical results to the naive ones", "[shgraph][heavy]") {
   const auto scenarios = short_scenarios(6.0, /*with_small_drive=*/true);
   for (const auto& sc : scenarios) {
     const World& world = world_for(sc);
