@@ -9,8 +9,17 @@
 #     because the VTK tests render. ctest's summary is the last thing printed.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
-ambisim_setup
-ambisim_install_packages "${AMBISIM_SLURM_PACKAGES[@]}"  # for tests/cli/slurm.sh
+# slurm-wlm and munge are for tests/cli/slurm.sh.
+ambisim_install_packages "${AMBISIM_PACKAGES[@]}" "${AMBISIM_SLURM_PACKAGES[@]}"
+# Wall time of each phase, printed before ctest (which prints its own total).
+phase_start=$SECONDS
+phases=()
+phase_done() {
+  phases+=("$1 $((SECONDS - phase_start)) s")
+  phase_start=$SECONDS
+}
+ambisim_build "$AMBISIM_BUILD"
+phase_done "Release build"
 jobs="$(nproc 2>/dev/null || echo 2)"
 
 if [ "${AMBISIM_SANITIZER_PASS:-1}" != "0" ]; then
@@ -21,6 +30,7 @@ if [ "${AMBISIM_SANITIZER_PASS:-1}" != "0" ]; then
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DAMBISIM_SANITIZE=ON -DAMBISIM_WITH_VIZ=OFF \
     -DAMBISIM_WITH_BENCH=OFF >/dev/null
   cmake --build "$asan" -j "$jobs" --target test_sim test_policies test_system
+  phase_done "sanitizer build"
   # Leak checks on, explicitly, so that a restricted environment fails loudly.
   export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1"
   export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
@@ -51,7 +61,9 @@ if [ "${AMBISIM_SANITIZER_PASS:-1}" != "0" ]; then
     run_sanitized test_sim test_policies test_system
   fi
   unset ASAN_OPTIONS UBSAN_OPTIONS
+  phase_done "sanitizer pass"
 fi
+(IFS=,; echo "test.sh phases (wall): ${phases[*]}" >&2)
 
 cd "$AMBISIM_BUILD"
 xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --output-on-failure -j "$jobs" "$@"
