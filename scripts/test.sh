@@ -63,7 +63,8 @@ if [ "${AMBISIM_SANITIZER_PASS:-1}" != "0" ]; then
   unset ASAN_OPTIONS UBSAN_OPTIONS
   phase_done "sanitizer pass"
 fi
-(IFS=,; echo "test.sh phases (wall): ${phases[*]}" >&2)
+printf -v phase_list '%s; ' "${phases[@]}"
+echo "test.sh phases (wall): ${phase_list%; }" >&2
 
 cd "$AMBISIM_BUILD"
 xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --output-on-failure -j "$jobs" "$@"
