@@ -59,9 +59,7 @@ Rgb scene_light(const LightingInfo& info) {
   return glm::max(e, Rgb(1e-9f));
 }
 
-double luminance_l00(const Sh9Rgb& sh) {
-  return 0.2126 * sh.c[0].x + 0.7152 * sh.c[0].y + 0.0722 * sh.c[0].z;
-}
+double luminance_l00(const Sh9Rgb& sh) { return luminance(sh.c[0]); }
 
 }  // namespace
 

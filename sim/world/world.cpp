@@ -319,7 +319,7 @@ void World::build_from_level(const TerrainLevel& level) {
     for (int i = 0; i < nx_; ++i) {
       if (i != 0 && j != 0 && i != nx_ - 1 && j != ny_ - 1) continue;
       const Rgb& a = albedo_[cell_index(i, j)];
-      sum += 0.2126 * a.x + 0.7152 * a.y + 0.0722 * a.z;
+      sum += luminance(a);
       ++count;
     }
   }

@@ -49,6 +49,7 @@ constexpr bool kSanitized = false;
 
 // Test length per scenario (s): long enough for the event that makes it a stress case.
 double test_duration(const std::string& name) {
+  if (kSanitized && name == "long_flight") return 60.0;
   static const std::map<std::string, double> lengths = {
       {"fps_drop", 6.0},       // the 100 -> 10 fps drop is at 5 s
       {"leave_bounds", 8.0},   // leaves the world after about 5.5 s
@@ -58,7 +59,6 @@ double test_duration(const std::string& name) {
       {"long_flight", 480.0},  // 4800 frames at 10 fps: 3 laps; shgraph peaks at 150 s
   };
   const auto it = lengths.find(name);
-  if (name == "long_flight" && kSanitized) return 60.0;
   return it == lengths.end() ? 2.5 : it->second;
 }
 
