@@ -30,16 +30,49 @@ PerObjectPlanner::PerObjectPlanner(const PlannerParams& params)
       lifetime_s_(params.number("lifetime_s")) {}
 
 void PerObjectPlanner::set_receivers(const std::vector<ReceiverView>& receivers) {
+  // The same receivers where they were (props that stand still): both maps already hold them.
+  const bool same = receivers.size() == last_receivers_.size() &&
+                    std::equal(receivers.begin(), receivers.end(), last_receivers_.begin(),
+                               [](const ReceiverView& a, const Placed& b) {
+                                 return a.id == b.id && a.position == b.position;
+                               });
+  if (same) return;
+  last_receivers_.clear();
+  for (const auto& r : receivers) last_receivers_.push_back({r.id, r.position});
+  // Both maps are rebuilt from the receivers every frame, but from their own nodes: an object
+  // keeps its node (and its capture), and the position index's nodes are reused, so a frame of
+  // 1e3 receivers allocates nothing once their number is steady.
   std::map<std::uint64_t, Object> next;
-  by_position_.clear();
   for (const auto& r : receivers) {
-    auto it = objects_.find(r.id);
-    Object o = it != objects_.end() ? it->second : Object{};
-    o.position = r.position;
-    next[r.id] = o;
-    by_position_.emplace(Key{r.position.x, r.position.y, r.position.z}, r.id);
+    auto it = next.find(r.id);
+    if (it == next.end()) {
+      auto node = objects_.extract(r.id);
+      if (node.empty()) {
+        it = next.emplace(r.id, Object{}).first;
+      } else {
+        it = next.insert(std::move(node)).position;
+      }
+    }
+    it->second.position = r.position;
   }
   objects_ = std::move(next);  // despawned receivers are forgotten with their capture
+  spare_positions_.clear();
+  while (!by_position_.empty())
+    spare_positions_.push_back(by_position_.extract(by_position_.begin()));
+  for (const auto& r : receivers) {
+    const Key key{r.position.x, r.position.y, r.position.z};
+    if (spare_positions_.empty()) {
+      by_position_.emplace(key, r.id);  // the first id at a position wins
+      continue;
+    }
+    auto node = std::move(spare_positions_.back());
+    spare_positions_.pop_back();
+    node.key() = key;
+    node.mapped() = r.id;
+    auto done = by_position_.insert(std::move(node));
+    if (!done.inserted) spare_positions_.push_back(std::move(done.node));
+  }
+  spare_positions_.clear();
 }
 
 double PerObjectPlanner::outdatedness(const Object& o) const {
@@ -149,14 +182,15 @@ PlannerStats PerObjectPlanner::stats() const {
   for (const auto& [id, o] : objects_) sets += o.has_capture ? 1 : 0;
   s.live_probes = sets;
   // Sets in their storage format (the Sh9Rgb inside Object is not counted twice); structure:
-  // map nodes for objects, the position index and the capture tags.
+  // map nodes for objects, the position index and the capture tags, and the last receivers.
   const std::size_t object_node =
       sizeof(std::uint64_t) + sizeof(Object) - sizeof(Sh9Rgb) + kMapNodeOverhead;
   const std::size_t position_node = sizeof(Key) + sizeof(std::uint64_t) + kMapNodeOverhead;
   const std::size_t tag_node = 2 * sizeof(std::uint64_t) + kMapNodeOverhead;
   s.bytes = static_cast<std::int64_t>(
       static_cast<std::size_t>(sets) * format_.bytes_per_set() + objects_.size() * object_node +
-      by_position_.size() * position_node + (pending_.size() + in_flight_.size()) * tag_node);
+      by_position_.size() * position_node + (pending_.size() + in_flight_.size()) * tag_node +
+      last_receivers_.capacity() * sizeof(Placed));
   return s;
 }
 

@@ -70,8 +70,16 @@ class PerObjectPlanner final : public Planner {
 
   double now_ = 0.0;
   std::uint64_t next_tag_ = 1;
-  std::map<std::uint64_t, Object> objects_;           // by receiver id (spawn order)
-  std::map<Key, std::uint64_t> by_position_;          // receiver position -> id (first id wins)
+  std::map<std::uint64_t, Object> objects_;   // by receiver id (spawn order)
+  std::map<Key, std::uint64_t> by_position_;  // receiver position -> id (first id wins)
+  // The receivers of the last set_receivers(), to skip the rebuild when none changed.
+  struct Placed {
+    std::uint64_t id;
+    glm::dvec3 position;
+  };
+  std::vector<Placed> last_receivers_;
+  // by_position_'s nodes between two set_receivers() passes (empty otherwise).
+  std::vector<std::map<Key, std::uint64_t>::node_type> spare_positions_;
   std::map<std::uint64_t, std::uint64_t> pending_;    // tag -> receiver id, not yet started
   std::map<std::uint64_t, std::uint64_t> in_flight_;  // tag -> receiver id, being rendered
 };

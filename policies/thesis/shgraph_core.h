@@ -129,9 +129,17 @@ class ShGraphCore {
   bool protected_node(std::int32_t i, const Focus& focus) const;
   void update_working_depth(const FrameContext& ctx);
   double ground_at(double x, double y) const;
+  // A lookup's point and its descent, found once: the pattern blend's coarser answers
+  // (lookup_into's recursion) read the same path from a shallower level.
+  struct LookupPath {
+    Q q{};
+    std::array<std::int32_t, kMaxLevels> nodes{};
+    int count = 0;
+    bool outside = false;  // beyond the root: the answer is only a coarse default
+  };
   // lookup() without its fallback, from the levels shallower than above_depth: false when no
-  // set serves p (r is then untouched).
-  bool lookup_into(const glm::dvec3& p, LookupResult& r,
+  // set serves the point (r is then untouched).
+  bool lookup_into(const LookupPath& path, LookupResult& r,
                    int above_depth = std::numeric_limits<int>::max()) const;
 
   ShGraphSettings s_;

@@ -16,18 +16,23 @@ namespace ambisim {
 template <int Dim>
 LookupResult ShGraphCore<Dim>::lookup(const glm::dvec3& p) const {
   LookupResult r;  // filled in place: one named result, so no copy on return
-  if (!lookup_into(p, r)) r = default_ambient_lookup();
+  bool found = false;
+  if (!nodes_.empty()) {
+    LookupPath path;
+    path.q = to_q(p);
+    path.outside = !contains(0, path.q);
+    find_deepest(path.q, path.nodes, &path.count);
+    found = lookup_into(path, r);
+  }
+  if (!found) r = default_ambient_lookup();
   return r;
 }
 
 template <int Dim>
-bool ShGraphCore<Dim>::lookup_into(const glm::dvec3& p, LookupResult& r, int above_depth) const {
-  if (nodes_.empty()) return false;
-  const Q q = to_q(p);
-  const bool outside = !contains(0, q);
-  std::array<std::int32_t, kMaxLevels> path;
-  int count = 0;
-  find_deepest(q, path, &count);
+bool ShGraphCore<Dim>::lookup_into(const LookupPath& lp, LookupResult& r, int above_depth) const {
+  const Q& q = lp.q;
+  const auto& path = lp.nodes;
+  const int count = lp.count;
 
   constexpr int kOctants = 1 << Dim;
   struct Best {
@@ -142,7 +147,7 @@ bool ShGraphCore<Dim>::lookup_into(const glm::dvec3& p, LookupResult& r, int abo
       entered += wn[k] * f[k];
       most = std::max(most, f[k]);
     }
-    if (most < 1.0 && lookup_into(p, coarse, chosen_depth)) rest = 1.0 - most;
+    if (most < 1.0 && lookup_into(lp, coarse, chosen_depth)) rest = 1.0 - most;
     const double level_share = 1.0 - rest;
     if (entered < 1.0 - 1e-12 && entered > 0.0) {
       for (int k = 0; k < kOctants; ++k) wn[k] = wn[k] * f[k] / entered * level_share;
@@ -211,7 +216,7 @@ bool ShGraphCore<Dim>::lookup_into(const glm::dvec3& p, LookupResult& r, int abo
   }
   r.data_time = data_time;
   r.spacing_m = cell;
-  r.fell_back = outside;  // outside the graph: the root's answer is only a coarse default
+  r.fell_back = lp.outside;  // outside the graph: the root's answer is only a coarse default
   return true;
 }
 
@@ -262,11 +267,11 @@ void ShGraphCore<Dim>::describe_nodes(std::vector<ProbeNodeView>& out) const {
 // The members defined here, for both dimensions: the class template is declared extern in
 // the header, and each concern's file instantiates its own members.
 template LookupResult ShGraphCore<2>::lookup(const glm::dvec3&) const;
-template bool ShGraphCore<2>::lookup_into(const glm::dvec3&, LookupResult&, int) const;
+template bool ShGraphCore<2>::lookup_into(const LookupPath&, LookupResult&, int) const;
 template PlannerStats ShGraphCore<2>::stats() const;
 template void ShGraphCore<2>::describe_nodes(std::vector<ProbeNodeView>&) const;
 template LookupResult ShGraphCore<3>::lookup(const glm::dvec3&) const;
-template bool ShGraphCore<3>::lookup_into(const glm::dvec3&, LookupResult&, int) const;
+template bool ShGraphCore<3>::lookup_into(const LookupPath&, LookupResult&, int) const;
 template PlannerStats ShGraphCore<3>::stats() const;
 template void ShGraphCore<3>::describe_nodes(std::vector<ProbeNodeView>&) const;
 
