@@ -57,6 +57,7 @@ constexpr double kDriveStepM = 0.5;     // 30 m/s at 60 fps while measuring fram
 constexpr double kLaneSpacingM = 40.0;  // lanes of the sweep, wider than a planner's region
 constexpr double kCameraHeightM = 2.0;
 constexpr int kFillCaptures = 256;     // captures startable per frame while filling
+constexpr int kSettleFrames = 180;     // 3 s standing still after the fill
 constexpr double kFillBudgetS = 90.0;  // wall-time limit of one fill
 constexpr int kLookupPoints = 4096;
 
@@ -212,7 +213,11 @@ class Driver {
   }
 
   // Fills to n live probes (see the file comment). Returns the wall time taken.
-  double fill(std::int64_t n) {
+  // Fills to n live probes at a burst of captures, then lets the captures in flight land and,
+  // with `settle`, stands kSettleFrames more: every fade and SHGraph's pattern blend (1 s by
+  // default) has run its course, so lookups and frames measure the structure as it stands
+  // between bursts. Without it they measure it right after one (sets a frame or two old).
+  double fill(std::int64_t n, bool settle) {
     const auto t0 = std::chrono::steady_clock::now();
     std::int64_t best = 0;
     std::int64_t since_growth = 0;
@@ -231,8 +236,9 @@ class Driver {
         break;
       }
     }
-    // Let the captures in flight land (the camera stands, nothing new starts).
-    for (int i = 0; i < 2; ++i) frame(0.0, 0, 6.0 * kFillCaptures, 1);
+    // Let the captures in flight land (the camera stands, nothing new starts), then settle.
+    const int still = settle ? 2 + kSettleFrames : 2;
+    for (int i = 0; i < still; ++i) frame(0.0, 0, 6.0 * kFillCaptures, 1);
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
 
@@ -291,12 +297,13 @@ struct Filled {
 // `extra`: parameters added to the setup's (the compact-format memory benchmark); `receivers`:
 // objects kept around the camera instead of the setup's (the game's-load frame benchmark).
 // `points`: lookup points (kLookupPoints by default; a batch of one frame's receivers).
+// `settle`: as Driver::fill.
 Filled& filled(const std::string& planner, std::int64_t n,
                const std::vector<std::string>& extra = {}, int receivers = 0,
-               int points = kLookupPoints) {
+               int points = kLookupPoints, bool settle = true) {
   static Filled f;
   std::string key = planner + "/" + std::to_string(n) + "/r" + std::to_string(receivers) + "/p" +
-                    std::to_string(points);
+                    std::to_string(points) + (settle ? "/settled" : "/fresh");
   for (const auto& e : extra) key += "/" + e;
   if (f.key == key) return f;
   f.driver.reset();
@@ -305,7 +312,7 @@ Filled& filled(const std::string& planner, std::int64_t n,
   s.params.insert(s.params.end(), extra.begin(), extra.end());
   if (receivers > 0) s.receivers = receivers;
   f.driver = std::make_unique<Driver>(s);
-  f.fill_s = f.driver->fill(n);
+  f.fill_s = f.driver->fill(n, settle);
   f.points.clear();
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0), h(0.5, 5.0);
@@ -360,9 +367,10 @@ LookupResult lookup_by(const Planner& p, const glm::dvec3& q, bool naive) {
   return p.lookup(q);
 }
 
-void BM_Lookup(benchmark::State& state, const std::string& planner, bool naive) {
+// `settle = false` (BM_LookupFresh): right after the fill's last burst of captures.
+void BM_Lookup(benchmark::State& state, const std::string& planner, bool naive, bool settle) {
   const std::int64_t n = state.range(0);
-  Filled& f = filled(planner, n);
+  Filled& f = filled(planner, n, {}, 0, kLookupPoints, settle);
   Planner& p = f.driver->planner();
   set_naive(p, naive);
   std::size_t i = 0;
@@ -563,7 +571,7 @@ int main(int argc, char** argv) {
         const std::string suffix =
             !naive ? "/" : (planner == "ambisim" ? "Reference/" : "ShGraphNaive/");
         benchmark::RegisterBenchmark(("BM_Lookup" + suffix + planner).c_str(), BM_Lookup, planner,
-                                     naive)
+                                     naive, true)
             ->Arg(n)
             ->Unit(benchmark::kNanosecond);
       }
@@ -604,6 +612,13 @@ int main(int argc, char** argv) {
                                      planner)
             ->Arg(n)
             ->Iterations(1);
+      }
+      if (n == 10000) {
+        // Last of its size: it fills again, without the settling.
+        benchmark::RegisterBenchmark(("BM_LookupFresh/" + planner).c_str(), BM_Lookup, planner,
+                                     false, false)
+            ->Arg(n)
+            ->Unit(benchmark::kNanosecond);
       }
     }
   }
