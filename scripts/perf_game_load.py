@@ -7,7 +7,8 @@ The block between `<!-- game-load-table -->` and `<!-- end game-load-table -->` 
 row per target of SPEC section 8 for the default planner (`ambisim`): what was measured (the
 median of the repetitions, or the single run), the naive path of the same run where there is
 one, the target and whether it is met. BENCH_JSON is what
-`bench_planners --benchmark_filter='ambisim|BM_LookupNaive' --benchmark_out=FILE` writes.
+`bench_planners --benchmark_out=FILE` writes (all of it, or only
+`--benchmark_filter='ambisim|BM_LookupNaive'`).
 Google Benchmark writes NaN for the spread of a constant counter: read leniently.
 Standard library only.
 """
