@@ -260,11 +260,6 @@ DemandPlanner::Look DemandPlanner::look_of(const Probe& q) const {
   return l;
 }
 
-void DemandPlanner::bake_looks() {
-  looks_.resize(probes_.size());
-  for (std::size_t i = 0; i < probes_.size(); ++i) looks_[i] = look_of(probes_[i]);
-}
-
 std::int32_t DemandPlanner::SetPool::add(const Sh9Rgb& sh) {
   if (!free.empty()) {
     const std::int32_t slot = free.back();
@@ -498,11 +493,8 @@ void DemandPlanner::reindex() {
     radii[i] = support_radius(probes_[i]);
   }
   index_.build(positions, radii);
-  bake_looks();
-  if (uses_pyramid()) {
-    far_.build(positions);
-    fill_far_field();
-  }
+  if (uses_pyramid()) far_.build(positions);
+  follow_probes(true);
 }
 
 void DemandPlanner::add_far_sums(std::size_t i, FarField::Sums& s) const {
@@ -543,9 +535,25 @@ bool DemandPlanner::scan_tail(const glm::dvec3& p, FarField::Answer& out) const 
   return true;
 }
 
-void DemandPlanner::fill_far_field() {
-  if (!uses_pyramid()) return;
-  far_.fill([this](std::size_t i, FarField::Sums& s) { add_far_sums(i, s); });
+void DemandPlanner::follow_probes(bool all) {
+  // A probe's look and sums move while it fades in or out, when its value is replaced and with
+  // the light: everything else gives what it gave at the last call.
+  const bool light_moved = (rescale_ && light_now_ != far_light_) || lamp_level_ != far_lamp_level_;
+  const bool pyramid = uses_pyramid();
+  looks_.resize(probes_.size());
+  far_steady_.resize(probes_.size(), 0);
+  for (std::size_t i = 0; i < probes_.size(); ++i) {
+    const Probe& q = probes_[i];
+    const bool steady = q.fade_out_start < 0.0 && fade_in_fraction(q) >= 1.0;
+    if (all || light_moved || !steady || !far_steady_[i]) {
+      looks_[i] = look_of(q);
+      if (pyramid) far_.mark(i);
+    }
+    far_steady_[i] = steady ? 1 : 0;
+  }
+  far_light_ = light_now_;
+  far_lamp_level_ = lamp_level_;
+  if (pyramid) far_.refill_marked([this](std::size_t i, FarField::Sums& s) { add_far_sums(i, s); });
 }
 
 bool DemandPlanner::evaluate_far_field_reference(const glm::dvec3& p, FarField::Answer& out) const {
@@ -804,6 +812,7 @@ void DemandPlanner::deliver(const FinishedProbe& probe) {
     // What lookups read of it changed now, not at the next update().
     const auto slot = static_cast<std::size_t>(q - probes_.data());
     if (slot < looks_.size()) looks_[slot] = look_of(*q);
+    if (uses_pyramid()) far_.mark(slot);  // its sums change at the next fill
     return;
   }
   Probe q;
@@ -917,8 +926,7 @@ void DemandPlanner::update(const FrameContext& ctx) {
   }
   // Presences and values moved with the clock and the light: the looks and the far field's
   // sums follow.
-  bake_looks();
-  fill_far_field();
+  follow_probes(false);
 }
 
 bool DemandPlanner::gone(const Probe& q) const {
@@ -934,13 +942,14 @@ PlannerStats DemandPlanner::stats() const {
   s.live_probes = static_cast<std::int64_t>(
       std::count_if(probes_.begin(), probes_.end(), [&](const Probe& q) { return !gone(q); }));
   // What is held, as held: the probes (their sets inline as fp16 bits, or in the pool as fp32),
-  // the pool of fp32, fading and lamp sets, the index, the pending captures (std::map nodes:
+  // the pool of fp32, fading and lamp sets, the index, the far field and what its last fill
+  // saw, the pending captures (std::map nodes:
   // about 4 pointers of overhead each), the receivers and their nearest-probe memos.
   const std::size_t per_pending = sizeof(Pending) + sizeof(std::uint64_t) + 4 * sizeof(void*);
   s.bytes = static_cast<std::int64_t>(
       probes_.size() * sizeof(Probe) + pool_.sets.size() * sizeof(Sh9Rgb) +
       pool_.free.size() * sizeof(std::int32_t) + index_.bytes() + far_.bytes() +
-      (planned_.size() + in_flight_.size()) * per_pending +
+      far_steady_.capacity() + (planned_.size() + in_flight_.size()) * per_pending +
       receivers_.size() * sizeof(ReceiverView) + nearest_memo_.capacity() * sizeof(NearestMemo));
   return s;
 }

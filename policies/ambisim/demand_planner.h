@@ -145,8 +145,6 @@ class DemandPlanner final : public Planner {
     bool plain = true;
   };
   Look look_of(const Probe& q) const;
-  // looks_ from the probes (all of them: after update() and reindex()).
-  void bake_looks();
   // Interpolated coefficients at p from the current probes; false if none is present. The
   // index finds the probes (the linear scan when `reference`).
   bool interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* meta, bool reference) const;
@@ -157,8 +155,12 @@ class DemandPlanner final : public Planner {
   void reindex();
   // A probe's far-field sums now: its presence w, w x what it shows, w x its data time.
   void add_far_sums(std::size_t i, FarField::Sums& s) const;
-  // The far field's sums from the probes' presences and values now (after each update()).
-  void fill_far_field();
+  // looks_ and the far field's sums from the probes' presences, values and the light now (after
+  // update() and reindex()). A probe that is steady (fully present, its value faded in), was
+  // steady at the last call and kept its value (deliver() marks a replaced one) looks and sums
+  // as it did under the same light, so unless `all` (after a rebuild) or the light moved only
+  // the others are redone.
+  void follow_probes(bool all);
   // Whether lookups read the pyramid (not with the old kernel, whose tail reaches everywhere,
   // nor with far_field = scan): only then is it built and filled.
   bool uses_pyramid() const { return !kernel_tail_ && !far_scan_; }
@@ -240,6 +242,12 @@ class DemandPlanner final : public Planner {
   SetPool pool_;
   ProbeIndex index_;  // over probes_[0, index_.size()); later ones are scanned
   FarField far_;      // over every probe, its sums as of the last update()
+  // What the far field's last fill saw: which probes were steady (fully present, their value
+  // faded in) and the light they were rescaled to. A steady probe under the same light adds
+  // the same sums again, so follow_probes() redoes only the looks and cells of the others.
+  std::vector<std::uint8_t> far_steady_;
+  Rgb far_light_{0.0f};
+  double far_lamp_level_ = 0.0;
   std::map<std::uint64_t, Pending> planned_;  // returned by plan(), not yet started
   std::map<std::uint64_t, Pending> in_flight_;
 };

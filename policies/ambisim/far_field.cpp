@@ -74,8 +74,56 @@ std::int32_t FarField::insert(int level, const glm::ivec3& c) {
   return cell;
 }
 
+void FarField::sum_up_from(std::size_t from) {
+  total_ = Sums{};
+  for (std::size_t k = from; k < levels_.size(); ++k) {
+    const Level& level = levels_[k];
+    if (k + 1 < levels_.size()) {
+      for (Sums& s : levels_[k + 1].cells) s = Sums{};
+    }
+    for (std::size_t c = 0; c < level.cells.size(); ++c) {
+      const Sums& s = level.cells[c];
+      Sums& to = k + 1 < levels_.size()
+                     ? levels_[k + 1].cells[static_cast<std::size_t>(level.parent[c])]
+                     : total_;
+      to.sh += s.sh;
+      to.weight += s.weight;
+      to.time += s.time;
+    }
+  }
+}
+
+void FarField::mark(std::size_t slot) {
+  if (members_stale_) return;  // the next refill is a full one
+  levels_[0].marked[static_cast<std::size_t>(cell_of_slot_[slot])] = 1;
+}
+
+void FarField::index_members() {
+  // Level 0's members are slots (by cell_of_slot_), a level's above are its children's cells
+  // (by their parent), each list in ascending order: a counting sort.
+  for (std::size_t k = 0; k < levels_.size(); ++k) {
+    Level& level = levels_[k];
+    const std::size_t cells = level.cells.size();
+    level.first.assign(cells + 1, 0);
+    level.marked.assign(cells, 0);
+    const std::size_t n = k == 0 ? cell_of_slot_.size() : levels_[k - 1].cells.size();
+    auto owner = [&](std::size_t i) {
+      return static_cast<std::size_t>(k == 0 ? cell_of_slot_[i] : levels_[k - 1].parent[i]);
+    };
+    for (std::size_t i = 0; i < n; ++i) ++level.first[owner(i) + 1];
+    for (std::size_t c = 0; c < cells; ++c) level.first[c + 1] += level.first[c];
+    level.members.resize(n);
+    std::vector<std::int32_t> at(level.first.begin(), level.first.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) {
+      level.members[static_cast<std::size_t>(at[owner(i)]++)] = static_cast<std::int32_t>(i);
+    }
+  }
+  members_stale_ = false;
+}
+
 void FarField::build(std::span<const glm::dvec3> positions) {
   for (Level& l : levels_) l = Level{};
+  members_stale_ = true;
   cell_of_slot_.clear();
   cell_of_slot_.reserve(positions.size());
   total_ = Sums{};
@@ -84,6 +132,7 @@ void FarField::build(std::span<const glm::dvec3> positions) {
 
 void FarField::append(const glm::dvec3& position) {
   cell_of_slot_.push_back(insert(0, base_cell(position)));
+  members_stale_ = true;
 }
 
 bool FarField::evaluate(const glm::dvec3& p, Answer& out) const {
@@ -109,7 +158,8 @@ std::size_t FarField::bytes() const {
   for (const Level& l : levels_) {
     b += l.keys.capacity() * sizeof(std::uint64_t) + l.index.capacity() * sizeof(std::int32_t) +
          l.cells.capacity() * sizeof(Sums) + l.cell_keys.capacity() * sizeof(std::uint64_t) +
-         l.parent.capacity() * sizeof(std::int32_t);
+         l.parent.capacity() * sizeof(std::int32_t) + l.first.capacity() * sizeof(std::int32_t) +
+         l.members.capacity() * sizeof(std::int32_t) + l.marked.capacity();
   }
   return b;
 }

@@ -66,6 +66,14 @@ class FarField {
   // Every slot's sums, from add(slot, sums) (which adds that slot's to sums), then up the levels.
   template <class AddSlot>
   void fill(AddSlot&& add);
+  // The same sums, bit for bit, recomputing only the cells that hold a slot marked since the
+  // last fill and their ancestors: a cell sums its slots in slot order and a parent its
+  // children in cell order, as fill() does, so an unmarked cell keeps what fill() would give it
+  // again. The caller marks every slot whose add() may have changed. After build() or append()
+  // it is a full fill().
+  void mark(std::size_t slot);
+  template <class AddSlot>
+  void refill_marked(AddSlot&& add);
   // F at p; false when no slot has weight.
   bool evaluate(const glm::dvec3& p, Answer& out) const;
   // The same F from the slots themselves: each level's sums around p by a scan of every slot
@@ -82,6 +90,11 @@ class FarField {
     std::vector<Sums> cells;          // in insertion order
     std::vector<std::uint64_t> cell_keys;
     std::vector<std::int32_t> parent;  // each cell's cell in the next level (-1: last level)
+    // refill_marked(): the members of each cell (level 0: slots; above: the children's cells),
+    // in order, as ranges of one array (first[c], first[c + 1]); and which cells to redo.
+    std::vector<std::int32_t> first;
+    std::vector<std::int32_t> members;
+    std::vector<std::uint8_t> marked;
     std::int32_t find(std::uint64_t key) const;
     std::int32_t find_or_insert(std::uint64_t key, bool* inserted);
     void grow();
@@ -102,9 +115,16 @@ class FarField {
   template <class Gather>
   static bool blend(const glm::dvec3& p, Gather&& gather, const Sums& total, Answer& out);
 
+  // The member lists of every level, from cell_of_slot_ and the parents (after a build or an
+  // append).
+  void index_members();
+  // Each level's sums over all its cells, then the total (the last step of fill()).
+  void sum_up_from(std::size_t level);
+
   std::vector<Level> levels_ = std::vector<Level>(kLevels);
   std::vector<std::int32_t> cell_of_slot_;  // level-0 cell of each slot
   Sums total_;
+  bool members_stale_ = true;  // built or appended since the member lists were made
 };
 
 // ---- templates ---------------------------------------------------------------------------
@@ -113,23 +133,51 @@ template <class AddSlot>
 void FarField::fill(AddSlot&& add) {
   for (Level& level : levels_) {
     for (Sums& s : level.cells) s = Sums{};
+    std::fill(level.marked.begin(), level.marked.end(), std::uint8_t{0});
   }
   for (std::size_t i = 0; i < cell_of_slot_.size(); ++i) {
     add(i, levels_[0].cells[static_cast<std::size_t>(cell_of_slot_[i])]);
   }
-  total_ = Sums{};
-  for (std::size_t k = 0; k < levels_.size(); ++k) {
-    const Level& level = levels_[k];
-    for (std::size_t c = 0; c < level.cells.size(); ++c) {
-      const Sums& s = level.cells[c];
-      Sums& to = k + 1 < levels_.size()
-                     ? levels_[k + 1].cells[static_cast<std::size_t>(level.parent[c])]
-                     : total_;
-      to.sh += s.sh;
-      to.weight += s.weight;
-      to.time += s.time;
+  sum_up_from(0);
+}
+
+template <class AddSlot>
+void FarField::refill_marked(AddSlot&& add) {
+  if (members_stale_) {
+    index_members();
+    fill(add);
+    return;
+  }
+  Level& base = levels_[0];
+  for (std::size_t c = 0; c < base.cells.size(); ++c) {
+    if (!base.marked[c]) continue;
+    Sums& s = base.cells[c] = Sums{};
+    for (std::int32_t m = base.first[c]; m < base.first[c + 1]; ++m) {
+      add(static_cast<std::size_t>(base.members[static_cast<std::size_t>(m)]), s);
     }
   }
+  for (std::size_t k = 0; k + 1 < levels_.size(); ++k) {
+    Level& level = levels_[k];
+    Level& up = levels_[k + 1];
+    for (std::size_t c = 0; c < level.cells.size(); ++c) {
+      if (!level.marked[c]) continue;
+      up.marked[static_cast<std::size_t>(level.parent[c])] = 1;
+      level.marked[c] = 0;
+    }
+    for (std::size_t c = 0; c < up.cells.size(); ++c) {
+      if (!up.marked[c]) continue;
+      Sums& to = up.cells[c] = Sums{};
+      for (std::int32_t m = up.first[c]; m < up.first[c + 1]; ++m) {
+        const Sums& from =
+            level.cells[static_cast<std::size_t>(up.members[static_cast<std::size_t>(m)])];
+        to.sh += from.sh;
+        to.weight += from.weight;
+        to.time += from.time;
+      }
+    }
+  }
+  std::fill(levels_.back().marked.begin(), levels_.back().marked.end(), std::uint8_t{0});
+  sum_up_from(levels_.size() - 1);
 }
 
 template <class Gather>
