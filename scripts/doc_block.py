@@ -5,6 +5,7 @@ becomes `text`. With check, nothing is written and the return value says whether
 already up to date; otherwise the doc is replaced atomically when it changes. Exits with one
 line naming the doc when the block is missing. Standard library only.
 """
+import argparse
 import os
 import re
 import sys
@@ -24,3 +25,13 @@ def rewrite_block(doc_path, begin, end, text, check=False):
             f.write(new)
         os.replace(tmp, doc_path)
     return True
+
+
+def doc_table_args(description):
+    """The command line every table script takes: BENCH_JSON [--doc DOC] [--check]."""
+    ap = argparse.ArgumentParser(description=description)
+    ap.add_argument("bench_json")
+    ap.add_argument("--doc", default="docs/PERFORMANCE.md")
+    ap.add_argument("--check", action="store_true",
+                    help="only say whether the doc's tables match the input (exit 1 if not)")
+    return ap.parse_args()

@@ -12,12 +12,11 @@ one, the target and whether it is met. BENCH_JSON is what
 Google Benchmark writes NaN for the spread of a constant counter: read leniently.
 Standard library only.
 """
-import argparse
 import json
 import re
 import sys
 
-from doc_block import rewrite_block
+from doc_block import doc_table_args, rewrite_block
 
 
 def load(path):
@@ -100,11 +99,7 @@ def table(benchmarks):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("bench_json")
-    ap.add_argument("--doc", default="docs/PERFORMANCE.md")
-    ap.add_argument("--check", action="store_true")
-    args = ap.parse_args()
+    args = doc_table_args(__doc__.splitlines()[0])
     ok = rewrite_block(args.doc, "<!-- game-load-table -->", "<!-- end game-load-table -->",
                        table(load(args.bench_json)), args.check)
     sys.exit(0 if ok else 1)

@@ -17,10 +17,9 @@ BENCH_JSON is what `bench_planners --benchmark_repetitions=3
 Google Benchmark writes NaN for the spread of a constant counter: read leniently.
 Standard library only.
 """
-import argparse
 import sys
 
-from doc_block import rewrite_block
+from doc_block import doc_table_args, rewrite_block
 from perf_game_load import fmt_time, load, ns
 
 SIZES = (1000, 10000, 100000)
@@ -175,12 +174,7 @@ def targets_table(runs, planners):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("bench_json")
-    ap.add_argument("--doc", default="docs/PERFORMANCE.md")
-    ap.add_argument("--check", action="store_true",
-                    help="only say whether the doc's tables match the input (exit 1 if not)")
-    args = ap.parse_args()
+    args = doc_table_args(__doc__.splitlines()[0])
     runs = runs_by_name(load(args.bench_json))
     planners = planners_of(runs)
     blocks = {
