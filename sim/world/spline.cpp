@@ -23,6 +23,22 @@ Spline3::Spline3(std::vector<glm::dvec3> points, int samples_per_segment) {
   }
   if (points_.size() < 2) throw std::invalid_argument("Spline3 needs at least 2 distinct points");
   const int segments = static_cast<int>(points_.size()) - 1;
+  // Each segment's knots and mirrored end points, computed once: eval() runs millions of
+  // times per run (every vehicle's lane point and tangent, every frame).
+  knots_.resize(static_cast<std::size_t>(segments));
+  for (int i = 0; i < segments; ++i) {
+    const glm::dvec3 p1 = points_[i];
+    const glm::dvec3 p2 = points_[i + 1];
+    // Mirror the end points so the curve passes through the first and last control points.
+    const glm::dvec3 p0 = i > 0 ? points_[i - 1] : 2.0 * p1 - p2;
+    const glm::dvec3 p3 = i + 2 <= segments ? points_[i + 2] : 2.0 * p2 - p1;
+    Knots& k = knots_[static_cast<std::size_t>(i)];
+    k.p0 = p0;
+    k.p3 = p3;
+    k.t1 = 0.0 + knot_step(p0, p1);
+    k.t2 = k.t1 + knot_step(p1, p2);
+    k.t3 = k.t2 + knot_step(p2, p3);
+  }
   const int n = segments * std::max(samples_per_segment, 1);
   table_t_.resize(static_cast<std::size_t>(n) + 1);
   table_s_.resize(static_cast<std::size_t>(n) + 1);
@@ -42,19 +58,12 @@ Spline3::Spline3(std::vector<glm::dvec3> points, int samples_per_segment) {
 }
 
 glm::dvec3 Spline3::eval(double t) const {
-  const int segments = static_cast<int>(points_.size()) - 1;
-  const int i = std::clamp(static_cast<int>(std::floor(t)), 0, segments - 1);
+  const int i = std::clamp(static_cast<int>(std::floor(t)), 0, static_cast<int>(knots_.size()) - 1);
   const double u = t - i;
-  const glm::dvec3 p1 = points_[i];
-  const glm::dvec3 p2 = points_[i + 1];
-  // Mirror the end points so the curve passes through the first and last control points.
-  const glm::dvec3 p0 = i > 0 ? points_[i - 1] : 2.0 * p1 - p2;
-  const glm::dvec3 p3 = i + 2 <= segments ? points_[i + 2] : 2.0 * p2 - p1;
-  // Barry-Goldman pyramid for the non-uniform (centripetal) Catmull-Rom.
-  const double t0 = 0.0;
-  const double t1 = t0 + knot_step(p0, p1);
-  const double t2 = t1 + knot_step(p1, p2);
-  const double t3 = t2 + knot_step(p2, p3);
+  const Knots& k = knots_[static_cast<std::size_t>(i)];
+  // Barry-Goldman pyramid for the non-uniform (centripetal) Catmull-Rom, t0 = 0.
+  const double t0 = 0.0, t1 = k.t1, t2 = k.t2, t3 = k.t3;
+  const glm::dvec3 &p0 = k.p0, &p1 = points_[i], &p2 = points_[i + 1], &p3 = k.p3;
   const double tt = t1 + u * (t2 - t1);
   const glm::dvec3 a1 = ((t1 - tt) * p0 + (tt - t0) * p1) / (t1 - t0);
   const glm::dvec3 a2 = ((t2 - tt) * p1 + (tt - t1) * p2) / (t2 - t1);

@@ -31,6 +31,13 @@ class Spline3 {
   glm::dvec3 eval(double t) const;
 
   std::vector<glm::dvec3> points_;
+  // Per segment i (points_[i] to points_[i + 1]): the neighbours p0 and p3 (mirrored at the
+  // ends) and the centripetal knots t1 < t2 < t3 (t0 = 0).
+  struct Knots {
+    glm::dvec3 p0, p3;
+    double t1, t2, t3;
+  };
+  std::vector<Knots> knots_;
   std::vector<double> table_t_;  // parameter samples
   std::vector<double> table_s_;  // cumulative arc length at each sample
   // The curve at each sample: closest_s() reads it instead of evaluating the curve again (a
