@@ -519,8 +519,9 @@ void BM_LookupNaive(benchmark::State& state) {
 
 // What `+route` prediction costs per call: Spline3::closest_s of the default world's road
 // (sim/world/spline.h) at points within 15 m of it. ShGraph and octree planners call it in plan()
-// and update(), so every frame.
-void BM_RoadClosestS(benchmark::State& state) {
+// and update(), so every frame. With `reference`, the coarse samples are scanned one by one
+// (closest_s_reference, the same answer) instead of searched in their tree.
+void BM_RoadClosestS(benchmark::State& state, bool reference) {
   const Spline3& road = world().road();
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(0.0, road.length()), off(-15.0, 15.0);
@@ -530,7 +531,8 @@ void BM_RoadClosestS(benchmark::State& state) {
   }
   std::size_t i = 0;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(road.closest_s(points[i]));
+    benchmark::DoNotOptimize(reference ? road.closest_s_reference(points[i])
+                                       : road.closest_s(points[i]));
     i = (i + 1) % points.size();
   }
   state.counters["road_m"] = road.length();
@@ -555,7 +557,10 @@ const char* const kPlanners[] = {"nearest",       "per_object", "grid",    "casc
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RegisterBenchmark("BM_RoadClosestS", BM_RoadClosestS)->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark("BM_RoadClosestS", BM_RoadClosestS, false)
+      ->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark("BM_RoadClosestSReference", BM_RoadClosestS, true)
+      ->Unit(benchmark::kMicrosecond);
   benchmark::RegisterBenchmark("BM_LookupNaive", BM_LookupNaive)
       ->Arg(1000)
       ->Arg(10000)

@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 namespace ambisim {
@@ -55,6 +56,7 @@ Spline3::Spline3(std::vector<glm::dvec3> points, int samples_per_segment) {
     table_p_[k] = p;
     prev = p;
   }
+  build_coarse_tree();
 }
 
 glm::dvec3 Spline3::eval(double t) const {
@@ -96,16 +98,24 @@ glm::dvec3 Spline3::tangent(double s) const {
   return len > 0.0 ? d / len : glm::dvec3(1.0, 0.0, 0.0);
 }
 
+// Coarse pass over every kCoarseStride-th table sample, then an exact pass over the polyline
+// segments around the best coarse sample. Exact for curves whose bends are gentle at the
+// table's scale (roads, camera paths); a hairpin tighter than kCoarseStride samples could
+// return a local minimum.
 double Spline3::closest_s(const glm::dvec3& p) const {
-  // Coarse pass over every kStride-th table sample, then an exact pass over the polyline
-  // segments around the best coarse sample: O(n / kStride) instead of O(n). Exact for curves
-  // whose bends are gentle at the table's scale (roads, camera paths); a hairpin tighter
-  // than kStride samples could return a local minimum.
-  constexpr std::size_t kStride = 16;
-  const std::size_t n = table_s_.size();
+  if (table_p_.empty()) return 0.0;
+  return refine_around(p, nearest_coarse(p));
+}
+
+double Spline3::closest_s_reference(const glm::dvec3& p) const {
+  if (table_p_.empty()) return 0.0;
+  return refine_around(p, nearest_coarse_scan(p));
+}
+
+std::size_t Spline3::nearest_coarse_scan(const glm::dvec3& p) const {
   std::size_t best_k = 0;
   double best_c = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < n; k += kStride) {
+  for (std::size_t k = 0; k < table_p_.size(); k += kCoarseStride) {
     const glm::dvec3& q = table_p_[k];
     const double d2 = glm::dot(p - q, p - q);
     if (d2 < best_c) {
@@ -113,8 +123,90 @@ double Spline3::closest_s(const glm::dvec3& p) const {
       best_k = k;
     }
   }
-  const std::size_t lo = best_k > kStride ? best_k - kStride : 0;
-  const std::size_t hi = std::min(n - 1, best_k + kStride);
+  return best_k;
+}
+
+std::size_t Spline3::nearest_coarse(const glm::dvec3& p) const {
+  // Branch and bound, nearer child first. A node is skipped only when every sample in it is
+  // provably farther than the best so far (with a margin far above the rounding of the bound),
+  // and ties go to the lower index, so the answer is the scan's, bit for bit.
+  std::size_t best_k = 0;
+  double best_c = std::numeric_limits<double>::infinity();
+  std::int32_t stack[64];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const CoarseNode& node = coarse_tree_[static_cast<std::size_t>(stack[--top])];
+    const double lower = glm::length(p - node.centre) - node.radius;
+    if (lower > 0.0 && lower * lower > best_c * (1.0 + 1e-9)) continue;
+    if (node.left < 0) {
+      for (std::size_t j = node.first; j < node.last; ++j) {
+        const std::size_t k = j * kCoarseStride;
+        const glm::dvec3& q = table_p_[k];
+        const double d2 = glm::dot(p - q, p - q);
+        if (d2 < best_c || (d2 == best_c && k < best_k)) {
+          best_c = d2;
+          best_k = k;
+        }
+      }
+      continue;
+    }
+    const CoarseNode& l = coarse_tree_[static_cast<std::size_t>(node.left)];
+    const CoarseNode& r = coarse_tree_[static_cast<std::size_t>(node.right)];
+    const bool left_nearer =
+        glm::length(p - l.centre) - l.radius <= glm::length(p - r.centre) - r.radius;
+    stack[top++] = left_nearer ? node.right : node.left;  // popped last
+    stack[top++] = left_nearer ? node.left : node.right;
+  }
+  return best_k;
+}
+
+void Spline3::build_coarse_tree() {
+  // Leaves of up to 8 coarse samples; a balanced split keeps the depth at log2(m / 8) + 1,
+  // far below the search's stack of 64 for any table that fits in memory.
+  constexpr std::uint32_t kLeaf = 8;
+  const auto m = static_cast<std::uint32_t>((table_p_.size() + kCoarseStride - 1) / kCoarseStride);
+  coarse_tree_.clear();
+  struct Build {
+    Spline3& s;
+    std::int32_t operator()(std::uint32_t first, std::uint32_t last) {
+      const auto index = static_cast<std::int32_t>(s.coarse_tree_.size());
+      s.coarse_tree_.emplace_back();
+      glm::dvec3 lo(std::numeric_limits<double>::infinity());
+      glm::dvec3 hi(-std::numeric_limits<double>::infinity());
+      for (std::uint32_t j = first; j < last; ++j) {
+        lo = glm::min(lo, s.table_p_[j * kCoarseStride]);
+        hi = glm::max(hi, s.table_p_[j * kCoarseStride]);
+      }
+      const glm::dvec3 centre = 0.5 * (lo + hi);
+      double radius = 0.0;
+      for (std::uint32_t j = first; j < last; ++j) {
+        radius = std::max(radius, glm::length(s.table_p_[j * kCoarseStride] - centre));
+      }
+      std::int32_t left = -1, right = -1;
+      if (last - first > kLeaf) {
+        const std::uint32_t mid = first + (last - first) / 2;
+        left = (*this)(first, mid);
+        right = (*this)(mid, last);
+      }
+      CoarseNode& node = s.coarse_tree_[static_cast<std::size_t>(index)];
+      node.centre = centre;
+      // Inflated so that rounding in the search's bound can never skip a sample on the sphere.
+      node.radius = radius * (1.0 + 1e-12) + 1e-9;
+      node.first = first;
+      node.last = last;
+      node.left = left;
+      node.right = right;
+      return index;
+    }
+  };
+  Build{*this}(0, m);
+}
+
+double Spline3::refine_around(const glm::dvec3& p, std::size_t best_k) const {
+  const std::size_t n = table_s_.size();
+  const std::size_t lo = best_k > kCoarseStride ? best_k - kCoarseStride : 0;
+  const std::size_t hi = std::min(n - 1, best_k + kCoarseStride);
   double best_s = 0.0;
   double best_d2 = std::numeric_limits<double>::infinity();
   for (std::size_t k = lo; k < hi; ++k) {

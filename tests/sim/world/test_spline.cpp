@@ -1,6 +1,8 @@
 // Spline3: passes through its control points, arc length matches closed forms.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <random>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
@@ -40,4 +42,52 @@ TEST_CASE("spline interpolates control points and approximates a circle", "[spli
   // Control point k sits at arc length ~ k/24 of the circumference.
   const double s6 = s.closest_s(pts[6]);
   CHECK(glm::length(s.at(s6) - pts[6]) < 1e-6);
+}
+
+namespace {
+
+// Every closest_s() answer against the coarse scan's, bit for bit (the tree search only skips
+// samples that are provably farther, and breaks ties toward the lower index as the scan does).
+int count_differences(const Spline3& s, const std::vector<glm::dvec3>& points) {
+  int differ = 0;
+  for (const auto& p : points) differ += s.closest_s(p) != s.closest_s_reference(p) ? 1 : 0;
+  return differ;
+}
+
+}  // namespace
+
+TEST_CASE("closest_s's tree search equals the coarse scan on winding, looping and long curves",
+          "[spline]") {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  // A 6 km random-walk road (the shape of the generated motorways), a closed circle whose ends
+  // meet (equal distances at the seam), and a hairpin that doubles back on itself 5 m apart.
+  std::vector<glm::dvec3> walk{{0.0, 0.0, 0.0}};
+  double heading = 0.0;
+  for (int k = 0; k < 120; ++k) {
+    heading += 0.4 * unit(rng);
+    walk.push_back(walk.back() +
+                   50.0 * glm::dvec3(std::cos(heading), std::sin(heading), 0.1 * unit(rng)));
+  }
+  std::vector<glm::dvec3> circle;
+  for (int k = 0; k <= 32; ++k) {
+    const double a = 2.0 * M_PI * k / 32.0;
+    circle.push_back({300.0 * std::cos(a), 300.0 * std::sin(a), 0.0});
+  }
+  std::vector<glm::dvec3> hairpin{{0, 0, 0}, {400, 0, 0}, {405, 2.5, 0}, {400, 5, 0}, {0, 5, 0}};
+  for (const std::vector<glm::dvec3>* points : {&walk, &circle, &hairpin}) {
+    const Spline3 s(*points);
+    std::uniform_real_distribution<double> along(0.0, s.length());
+    std::vector<glm::dvec3> queries;
+    for (int i = 0; i < 4000; ++i) {
+      const glm::dvec3 on = s.at(along(rng));
+      queries.push_back(on + 15.0 * glm::dvec3(unit(rng), unit(rng), 0.2 * unit(rng)));  // near
+      queries.push_back(on + 2000.0 * glm::dvec3(unit(rng), unit(rng), unit(rng)));      // far
+    }
+    // Points exactly on the table's samples (distance 0) and the circle's centre (all equal).
+    for (double x = 0.0; x <= s.length(); x += s.length() / 97.0) queries.push_back(s.at(x));
+    queries.push_back({0.0, 0.0, 0.0});
+    queries.push_back({1e7, -1e7, 3e3});
+    CHECK(count_differences(s, queries) == 0);
+  }
 }
