@@ -548,6 +548,24 @@ void BM_MemoryL1fp16(benchmark::State& state, const std::string& planner) {
 }
 
 // Planners with a structure to measure; constant, hemisphere and oracle hold no structure.
+// What a vehicle's lane point pays to turn arc length into the curve's parameter, about 9 times
+// per vehicle per frame (sim/world/terrain_queries.h): the first arc-length sample beyond s from
+// its bucket, against the binary search over the road's samples (`reference`).
+void BM_RoadFirstSampleAfter(benchmark::State& state, bool reference) {
+  const Spline3& road = world().road();
+  std::mt19937_64 rng(6);
+  std::uniform_real_distribution<double> u(0.0, road.length());
+  std::vector<double> arc(4096);
+  for (double& s : arc) s = u(rng);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(reference ? road.first_sample_after_reference(arc[i])
+                                       : road.first_sample_after(arc[i]));
+    i = (i + 1) % arc.size();
+  }
+  state.counters["samples"] = static_cast<double>(road.sample_arc_lengths().size());
+}
+
 const char* const kPlanners[] = {"nearest",       "per_object", "grid",    "cascades",
                                  "octree",        "octree+vp",  "shgraph", "shgraph+vp",
                                  "shgraph+route", "shgraph2d",  "ambisim"};
@@ -561,6 +579,10 @@ int main(int argc, char** argv) {
       ->Unit(benchmark::kMicrosecond);
   benchmark::RegisterBenchmark("BM_RoadClosestSReference", BM_RoadClosestS, true)
       ->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark("BM_RoadFirstSampleAfter", BM_RoadFirstSampleAfter, false)
+      ->Unit(benchmark::kNanosecond);
+  benchmark::RegisterBenchmark("BM_RoadFirstSampleAfterReference", BM_RoadFirstSampleAfter, true)
+      ->Unit(benchmark::kNanosecond);
   benchmark::RegisterBenchmark("BM_LookupNaive", BM_LookupNaive)
       ->Arg(1000)
       ->Arg(10000)

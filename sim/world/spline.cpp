@@ -56,6 +56,7 @@ Spline3::Spline3(std::vector<glm::dvec3> points, int samples_per_segment) {
     table_p_[k] = p;
     prev = p;
   }
+  build_buckets();
   build_coarse_tree();
 }
 
@@ -75,11 +76,46 @@ glm::dvec3 Spline3::eval(double t) const {
   return ((t2 - tt) * b1 + (tt - t1) * b2) / (t2 - t1);
 }
 
+std::size_t Spline3::first_sample_after(double s) const {
+  // Start at the bucket's first sample, then step to the first sample beyond s, both ways: the
+  // answer does not depend on the bucket being right, only the number of steps does (about one,
+  // as there are as many buckets as samples).
+  if (bucket_first_.empty()) return first_sample_after_reference(s);
+  const double b = std::floor(s * inverse_bucket_m_);
+  const std::size_t last_bucket = bucket_first_.size() - 1;
+  std::size_t k =
+      bucket_first_[!(b > 0.0)                              ? 0
+                    : b >= static_cast<double>(last_bucket) ? last_bucket
+                                                            : static_cast<std::size_t>(b)];
+  while (k > 0 && table_s_[k - 1] > s) --k;
+  while (k < table_s_.size() && table_s_[k] <= s) ++k;
+  return k;
+}
+
+std::size_t Spline3::first_sample_after_reference(double s) const {
+  return static_cast<std::size_t>(std::upper_bound(table_s_.begin(), table_s_.end(), s) -
+                                  table_s_.begin());
+}
+
+void Spline3::build_buckets() {
+  // Bucket b starts at arc length b / inverse_bucket_m_ and holds the first sample beyond it.
+  const std::size_t n = table_s_.size();
+  bucket_first_.clear();
+  if (!(length() > 0.0)) return;
+  inverse_bucket_m_ = static_cast<double>(n) / length();
+  bucket_first_.resize(n);
+  std::size_t k = 0;
+  for (std::size_t b = 0; b < n; ++b) {
+    const double start = static_cast<double>(b) / inverse_bucket_m_;
+    while (k < n && table_s_[k] <= start) ++k;
+    bucket_first_[b] = k;
+  }
+}
+
 double Spline3::param_at(double s) const {
   s = std::clamp(s, 0.0, length());
-  auto it = std::upper_bound(table_s_.begin(), table_s_.end(), s);
-  if (it == table_s_.end()) return table_t_.back();
-  const std::size_t k = static_cast<std::size_t>(it - table_s_.begin());
+  const std::size_t k = first_sample_after(s);
+  if (k == table_s_.size()) return table_t_.back();
   if (k == 0) return table_t_.front();
   const double ds = table_s_[k] - table_s_[k - 1];
   const double f = ds > 0.0 ? (s - table_s_[k - 1]) / ds : 0.0;

@@ -32,6 +32,14 @@ class Spline3 {
   // tested against (and the naive path of its benchmark).
   double closest_s_reference(const glm::dvec3& p) const;
 
+  // The index of the first arc-length sample beyond s (std::upper_bound over the samples), for
+  // s in [0, length]: found from a bucket per sample's worth of arc length, since every
+  // vehicle's lane point asks for it about 9 times per frame. The reference is the binary
+  // search, which the test compares it with.
+  std::size_t first_sample_after(double s) const;
+  std::size_t first_sample_after_reference(double s) const;
+  const std::vector<double>& sample_arc_lengths() const { return table_s_; }
+
  private:
   // Curve parameter t in [0, segments] at arc length s.
   double param_at(double s) const;
@@ -44,6 +52,7 @@ class Spline3 {
   // The exact pass over the polyline segments within kCoarseStride samples of best_k.
   double refine_around(const glm::dvec3& p, std::size_t best_k) const;
   void build_coarse_tree();
+  void build_buckets();
 
   std::vector<glm::dvec3> points_;
   // Per segment i (points_[i] to points_[i + 1]): the neighbours p0 and p3 (mirrored at the
@@ -67,6 +76,9 @@ class Spline3 {
     std::int32_t left = -1, right = -1;  // -1: a leaf
   };
   std::vector<CoarseNode> coarse_tree_;  // root first
+  // bucket_first_[b]: first_sample_after(b / inverse_bucket_m_); one bucket per sample.
+  std::vector<std::size_t> bucket_first_;
+  double inverse_bucket_m_ = 0.0;
 };
 
 }  // namespace ambisim

@@ -91,3 +91,32 @@ TEST_CASE("closest_s's tree search equals the coarse scan on winding, looping an
     CHECK(count_differences(s, queries) == 0);
   }
 }
+
+TEST_CASE("first_sample_after's buckets equal the binary search, on and between the samples",
+          "[spline]") {
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  // Segments from 2 m to 200 m long, so a bucket (a sample's average arc length) holds from
+  // none to many samples.
+  std::vector<glm::dvec3> points{{0.0, 0.0, 0.0}};
+  for (int k = 0; k < 60; ++k) {
+    const double len = k % 3 == 0 ? 2.0 : 100.0 + 100.0 * unit(rng);
+    points.push_back(points.back() + len * glm::dvec3(1.0, 0.3 * unit(rng), 0.05 * unit(rng)));
+  }
+  const Spline3 s(points);
+  std::vector<double> queries{0.0, s.length()};
+  for (const double x : s.sample_arc_lengths()) {
+    queries.push_back(x);  // exactly on a sample: the first sample beyond it is the next one
+    queries.push_back(std::nextafter(x, -1.0));
+    queries.push_back(std::nextafter(x, 1e9));
+  }
+  std::uniform_real_distribution<double> along(0.0, s.length());
+  for (int i = 0; i < 20000; ++i) queries.push_back(along(rng));
+  std::size_t differences = 0;
+  for (const double x : queries) {
+    if (x < 0.0 || x > s.length()) continue;  // first_sample_after's range
+    differences += s.first_sample_after(x) != s.first_sample_after_reference(x) ? 1 : 0;
+  }
+  CHECK(differences == 0);
+  CHECK(queries.size() > 20000 + 3 * 60 * 64);
+}
