@@ -11,7 +11,11 @@ void CoefficientAnchor::set_new(const Sh9Rgb& sh, double creation_time, std::uin
     active_ = fade_from ? *fade_from : sh;
     data_time_ = fade_from ? fade_from_time : creation_time;
   }
-  new_ = sh;
+  if (new_) {
+    *new_ = sh;
+  } else {
+    new_ = std::make_unique<Sh9Rgb>(sh);
+  }
   creation_time_ = creation_time;
   tag_ = tag;
   has_ = true;
@@ -29,14 +33,15 @@ bool CoefficientAnchor::update(double now, const AnchorTiming& timing) {
       fade_end_ = now + timing.fade_s;
     }
     if (now >= fade_end_) {
-      active_ = new_;
+      active_ = *new_;
+      new_.reset();
       data_time_ = creation_time_;
       fading_ = false;
     } else if (now > fade_last_) {
       // One linear step: moving the remaining fraction dt / (end - last) keeps Active on the
       // straight line from its value at the fade start to New, with only two sets stored.
       const double f = (now - fade_last_) / (fade_end_ - fade_last_);
-      active_ = sh_lerp(active_, new_, static_cast<float>(f));
+      active_ = sh_lerp(active_, *new_, static_cast<float>(f));
       data_time_ += f * (creation_time_ - data_time_);
       fade_last_ = now;
     }
@@ -49,6 +54,7 @@ bool CoefficientAnchor::update(double now, const AnchorTiming& timing) {
     need_new_ = false;
     fading_ = false;
     fade_pending_ = false;
+    new_.reset();
     return true;
   }
   const double renewal_age = timing.clock != nullptr ? timing.clock->age(creation_time_) : age;

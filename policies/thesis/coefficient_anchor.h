@@ -8,7 +8,12 @@
 // serves the old set while the replacement is in flight until lifetime + fade_s, and loses its
 // set after that. It is passive: update()
 // only reports the loss, the graph decides what it means for its owners.
+//
+// New is needed only while a fade runs (when it ends, Active is New), so it lives on the heap
+// for that second and a fraction: an anchor holds one set, not two, for the other 59 s of its
+// lifetime (thesis Bilaga B keeps both for ever; issue 15's memory target).
 #include <cstdint>
+#include <memory>
 
 #include "policies/core/light_clock.h"
 #include "sim/sh/sh9.h"
@@ -37,7 +42,8 @@ class CoefficientAnchor {
   double data_time() const { return data_time_; }
   std::uint64_t tag() const { return tag_; }  // the capture whose data is the newest
   const Sh9Rgb& active() const { return active_; }
-  const Sh9Rgb& newest() const { return new_; }
+  // Whether New is held (exactly while fading): what the memory statistics count beside Active.
+  bool holds_new() const { return new_ != nullptr; }
 
   // PrepareForNewCoefficients / a refused or lost capture.
   void prepare_for_new() { in_flight_ = true; }
@@ -54,7 +60,7 @@ class CoefficientAnchor {
 
  private:
   Sh9Rgb active_;
-  Sh9Rgb new_;
+  std::unique_ptr<Sh9Rgb> new_;  // only while fading
   double creation_time_ = 0.0;
   double data_time_ = 0.0;
   double fade_last_ = 0.0;  // time of the last fade step

@@ -229,18 +229,25 @@ PlannerStats ShGraphCore<Dim>::stats() const {
     s.live_probes = static_cast<std::int64_t>(by_age_.size());  // the anchors holding a set
   }
   s.nodes = static_cast<std::int64_t>(nodes_.size() - free_blocks_.size() * kChildren);
-  // Sets: Active + New per anchor, as the format stores them. Structure: the anchor's
-  // bookkeeping (its struct minus the two float sets), the key and a map node each; the node
-  // pool as allocated; the free list; the capture tag maps.
-  const std::size_t per_anchor = 2 * s_.format.bytes_per_set() +
-                                 (sizeof(AnchorEntry) - 2 * sizeof(Sh9Rgb)) + sizeof(Key) +
+  // Sets: Active per anchor and New per fading anchor (a heap block), as the format stores
+  // them. Structure: the anchor's bookkeeping (its struct minus the float set), the key and a
+  // map node each; the node pool as allocated; the free list; the capture tag maps.
+  const std::size_t per_anchor = s_.format.bytes_per_set() +
+                                 (sizeof(AnchorEntry) - sizeof(Sh9Rgb)) + sizeof(Key) +
                                  kMapNodeOverhead;
+  const std::size_t per_new = s_.format.bytes_per_set() + kHeapBlockOverhead;
+  std::size_t news = 0;
+  if (naive_) {
+    for (const auto& [key, e] : anchors_) news += e.anchor.holds_new() ? 1 : 0;
+  } else {
+    for (const AnchorEntry* e : fading_) news += e->anchor.holds_new() ? 1 : 0;
+  }
   const std::size_t per_tag =
       sizeof(typename std::map<std::uint64_t, InFlight>::value_type) + kMapNodeOverhead;
-  s.bytes =
-      static_cast<std::int64_t>(anchors_.size() * per_anchor + nodes_.capacity() * sizeof(Node) +
-                                free_blocks_.capacity() * sizeof(std::int32_t) +
-                                (pending_.size() + in_flight_.size()) * per_tag);
+  s.bytes = static_cast<std::int64_t>(anchors_.size() * per_anchor + news * per_new +
+                                      nodes_.capacity() * sizeof(Node) +
+                                      free_blocks_.capacity() * sizeof(std::int32_t) +
+                                      (pending_.size() + in_flight_.size()) * per_tag);
   return s;
 }
 

@@ -95,3 +95,32 @@ TEST_CASE("an anchor loses its set after the lifetime (plus fade while in flight
   CHECK_FALSE(b.update(60.9, timing()));
   CHECK(b.update(61.01, timing()));
 }
+
+TEST_CASE("New is held exactly while a fade runs, and a replacement mid-fade keeps fading to it",
+          "[shgraph]") {
+  CoefficientAnchor a;
+  CHECK_FALSE(a.holds_new());
+  const Sh9Rgb before = uniform(1.0f);
+  a.set_new(uniform(3.0f), 10.0, 1, &before, 4.0);
+  CHECK(a.holds_new());
+  a.update(10.5, timing());  // the fade starts
+  a.update(10.75, timing());
+  CHECK(a.holds_new());
+  // A second set arrives mid-fade: the fade goes on from where Active is, towards the new one.
+  a.set_new(uniform(5.0f), 10.8, 2, nullptr, 0.0);
+  CHECK(a.holds_new());
+  CHECK(a.active().c[0].x == Approx(1.5f));
+  a.update(10.9, timing());  // restarts: 1 s from here
+  a.update(11.4, timing());
+  CHECK(a.active().c[0].x == Approx(1.5f + 0.5f * (5.0f - 1.5f)));
+  a.update(11.9, timing());
+  CHECK(a.active() == uniform(5.0f));
+  CHECK_FALSE(a.fading());
+  CHECK_FALSE(a.holds_new());  // one set from here on
+  // Expiry mid-fade drops New with the set.
+  a.set_new(uniform(7.0f), 20.0, 3, nullptr, 0.0);
+  CHECK(a.holds_new());
+  CHECK(a.update(20.0 + 60.5, timing()));
+  CHECK_FALSE(a.has_coefficients());
+  CHECK_FALSE(a.holds_new());
+}
