@@ -11,19 +11,54 @@
 namespace ambisim {
 
 template <int Dim>
-AnchorEntry* ShGraphCore<Dim>::acquire(const Key& key) {
-  auto [it, inserted] = anchors_.try_emplace(key);
-  if (inserted) {
-    it->second.position = anchor_position(key);
-    it->second.capture = capture_position(it->second.position);
-    it->second.relocation_m = it->second.capture.z - it->second.position.z;
-    // Its light is attributed where it was captured, never at the nominal point inside a solid
-    // (L318). The sheet weighs horizontal distances only, and moves sets only vertically.
-    for (int a = 0; a < Dim; ++a) it->second.at_q[a] = static_cast<double>(key[a]);
-    if constexpr (Dim == 3) it->second.at_q.z = (it->second.capture.z - origin_.z) / h_;
-  }
+AnchorEntry* ShGraphCore<Dim>::share_existing(const Key& key) {
+  auto it = anchors_.find(key);
+  if (it == anchors_.end()) return nullptr;
   ++it->second.refs;
   return &it->second;
+}
+
+template <int Dim>
+AnchorEntry& ShGraphCore<Dim>::materialize(std::int32_t i) {
+  if (nodes_[i].anchor != nullptr) return *nodes_[i].anchor;
+  const Key key = nodes_[i].key;
+  auto [it, inserted] = anchors_.try_emplace(key);
+  AnchorEntry& e = it->second;  // inserted: by the invariant no node of the chain had one
+  e.position = anchor_position(key);
+  e.capture = capture_position(e.position);
+  e.relocation_m = e.capture.z - e.position.z;
+  // Its light is attributed where it was captured, never at the nominal point inside a solid
+  // (L318). The sheet weighs horizontal distances only, and moves sets only vertically.
+  for (int a = 0; a < Dim; ++a) e.at_q[a] = static_cast<double>(key[a]);
+  if constexpr (Dim == 3) e.at_q.z = (e.capture.z - origin_.z) / h_;
+  // Every node of the chain: up while the node is its parent's centre child, then down.
+  std::int32_t top = i;
+  while (nodes_[top].parent >= 0 && nodes_[nodes_[top].parent].first_child + kCentreChild == top) {
+    top = nodes_[top].parent;
+  }
+  for (std::int32_t m = top; m >= 0;
+       m = nodes_[m].first_child >= 0 ? nodes_[m].first_child + kCentreChild : -1) {
+    nodes_[m].anchor = &e;
+    ++e.refs;
+  }
+  return e;
+}
+
+template <int Dim>
+void ShGraphCore<Dim>::release_key(std::int32_t i) {
+  Node& n = nodes_[i];
+  if (n.anchor != nullptr) {
+    if (--n.anchor->refs == 0) {
+      forget(n.anchor);
+      anchors_.erase(n.key);
+    }
+    n.anchor = nullptr;
+    return;
+  }
+  // No anchor: the chain was never considered. The last node of a chain is the one that is not
+  // its (live) parent's centre child, as above; the fill memo counts it as before.
+  const std::int32_t p = n.parent;
+  if (p < 0 || nodes_[p].first_child + kCentreChild != i) ++forgotten_;
 }
 
 template <int Dim>
@@ -96,10 +131,11 @@ std::uint32_t ShGraphCore<Dim>::refresh_masks(std::int32_t i, const Focus& focus
       } else {
         nodes_[fc + c].children_with_coefficients = 0;  // a leaf: what the call would do
       }
-      const bool has = nodes_[fc + c].anchor->anchor.has_coefficients();
+      const AnchorEntry* e = nodes_[fc + c].anchor;
+      const bool has = e != nullptr && e->anchor.has_coefficients();
       if (has || m != 0) mask |= 1u << c;
       if (m != 0 || (has && c != kCentreChild)) own_data = true;
-      flight = flight || cf || nodes_[fc + c].anchor->anchor.in_flight();
+      flight = flight || cf || (e != nullptr && e->anchor.in_flight());
     }
     // Prune: no child holds coefficients of its own (the centre's are the parent's, which
     // keeps them), nothing is being captured below, and the camera is not about to need it.
@@ -185,7 +221,9 @@ void ShGraphCore<Dim>::update(const FrameContext& ctx) {
 
 // The members defined here, for both dimensions: the class template is declared extern in
 // the header, and each concern's file instantiates its own members.
-template AnchorEntry* ShGraphCore<2>::acquire(const Key&);
+template AnchorEntry* ShGraphCore<2>::share_existing(const Key&);
+template AnchorEntry& ShGraphCore<2>::materialize(std::int32_t);
+template void ShGraphCore<2>::release_key(std::int32_t);
 template void ShGraphCore<2>::forget(AnchorEntry*);
 template void ShGraphCore<2>::set_coefficients(AnchorEntry*, const Sh9Rgb&, const FinishedProbe&,
                                                const Sh9Rgb*, double);
@@ -193,7 +231,9 @@ template void ShGraphCore<2>::deliver(const FinishedProbe&);
 template bool ShGraphCore<2>::protected_node(std::int32_t, const Focus&) const;
 template std::uint32_t ShGraphCore<2>::refresh_masks(std::int32_t, const Focus&, bool*);
 template void ShGraphCore<2>::update(const FrameContext&);
-template AnchorEntry* ShGraphCore<3>::acquire(const Key&);
+template AnchorEntry* ShGraphCore<3>::share_existing(const Key&);
+template AnchorEntry& ShGraphCore<3>::materialize(std::int32_t);
+template void ShGraphCore<3>::release_key(std::int32_t);
 template void ShGraphCore<3>::forget(AnchorEntry*);
 template void ShGraphCore<3>::set_coefficients(AnchorEntry*, const Sh9Rgb&, const FinishedProbe&,
                                                const Sh9Rgb*, double);

@@ -3,6 +3,8 @@
 // ground sheet (Dim = 2, `shgraph2d`, thesis 8.5/9.3, D12). One concept: a hierarchy of cells
 // split 3 per axis (27 or 9 children, created and removed together) with a coefficient anchor
 // at each cell centre (the centre child shares its parent's anchor: same integer key, D10),
+// made the first time planning considers the cell (about 4 in 10 cells of a split never are:
+// they would hold an empty anchor of 330 B each),
 // 2 x Dim same-depth neighbour links kept in pairs, a children-with-coefficients mask driving
 // pruning, a root that grows when a capture is needed outside it and shrinks back (D9), a
 // working depth from frame rate, budget and speed (D2), and a lookup of at most 2^Dim sets, one
@@ -57,6 +59,7 @@ class ShGraphCore {
     std::int32_t first_child = -1;            // block of kChildren consecutive nodes, -1 = leaf
     std::array<std::int32_t, kLinks> link{};  // same-depth neighbours: -x,+x,-y,+y(,-z,+z)
     std::uint32_t children_with_coefficients = 0;  // thesis' set<int>, as a bit mask
+    // Null until planning first considers the cell; then shared by every node with this key.
     AnchorEntry* anchor = nullptr;
   };
 
@@ -103,7 +106,18 @@ class ShGraphCore {
   glm::dvec3 anchor_position(const Key& key) const;
   glm::dvec3 capture_position(const glm::dvec3& nominal) const;
 
-  AnchorEntry* acquire(const Key& key);
+  // The anchors are made lazily, and the invariant is: an entry exists for a key iff some live
+  // node with that key was considered by plan(), and then every live node with the key points
+  // to it (refs counts them); otherwise they all hold null. Nodes with one key form a centre
+  // chain (a node, its centre child, that one's centre child, ...).
+  // The existing anchor of a new node's key, with one more reference (null: none yet).
+  AnchorEntry* share_existing(const Key& key);
+  // Node i's anchor, made now if its chain has none (position and capture point computed as
+  // they would have been at the node's creation: they depend on the key and the world only).
+  AnchorEntry& materialize(std::int32_t i);
+  // Node i gives up its key (its children released before it): the anchor goes with the last
+  // node of its chain, which is also when the fill memo counts a forgotten cell.
+  void release_key(std::int32_t i);
   // Drops an anchor from the update lists before its entry is erased.
   void forget(AnchorEntry* e);
   void set_coefficients(AnchorEntry* e, const Sh9Rgb& sh, const FinishedProbe& probe,

@@ -59,7 +59,7 @@ bool ShGraphCore<Dim>::lookup_into(const LookupPath& lp, LookupResult& r, int ab
         const std::int32_t j = cells[static_cast<std::size_t>(n)];
         if (j < 0) continue;
         const AnchorEntry* e = nodes_[j].anchor;
-        if (!e->anchor.has_coefficients()) continue;
+        if (e == nullptr || !e->anchor.has_coefficients()) continue;
         double d2 = 0.0;
         int oct = 0;
         for (int a = 0; a < Dim; ++a) {
@@ -76,8 +76,8 @@ bool ShGraphCore<Dim>::lookup_into(const LookupPath& lp, LookupResult& r, int ab
         const std::int32_t j = cells[n];
         if (j < 0) continue;
         const Node& nd = nodes[j];
-        const AnchorEntry* e = nd.anchor;
-        if (!e->anchor.has_coefficients()) continue;
+        const AnchorEntry* e = nd.anchor;  // null: never considered, so no set
+        if (e == nullptr || !e->anchor.has_coefficients()) continue;
         double d2 = 0.0;
         int oct = 0;
         for (int a = 0; a < Dim; ++a) {
@@ -257,16 +257,18 @@ void ShGraphCore<Dim>::describe_nodes(std::vector<ProbeNodeView>& out) const {
   for (std::int32_t i = 0; i < static_cast<std::int32_t>(nodes_.size()); ++i) {
     if (!node_live(i)) continue;
     const Node& n = nodes_[i];
-    const CoefficientAnchor& a = n.anchor->anchor;
     ProbeNodeView v;
     v.centre = node_centre(i);
     const double hf = 0.5 * cell_size(n.depth);
     v.half_extent = glm::dvec3(hf, hf, Dim == 3 ? hf : 0.0);
     v.depth = n.depth - nodes_[0].depth;
-    v.has_data = a.has_coefficients();
-    v.in_flight = a.in_flight();
-    v.age_s = a.has_coefficients() ? now_ - a.creation_time() : 0.0;
-    if (v.has_data) v.sh = a.active();
+    if (n.anchor != nullptr) {
+      const CoefficientAnchor& a = n.anchor->anchor;
+      v.has_data = a.has_coefficients();
+      v.in_flight = a.in_flight();
+      v.age_s = a.has_coefficients() ? now_ - a.creation_time() : 0.0;
+      if (v.has_data) v.sh = a.active();
+    }
     out.push_back(v);
   }
 }

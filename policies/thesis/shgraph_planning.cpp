@@ -56,7 +56,7 @@ std::vector<CaptureRequest> ShGraphCore<Dim>::plan(const FrameContext& ctx) {
     root.key.fill(pow3_[dmax_]);
     root.link.fill(-1);
     nodes_.push_back(root);
-    nodes_[0].anchor = acquire(root.key);
+    // Its anchor is made when planning first considers it, as every cell's.
   }
   const Q q_now = to_q(focus.now);
   const Q q_ahead = to_q(focus.ahead);
@@ -91,7 +91,7 @@ std::vector<CaptureRequest> ShGraphCore<Dim>::plan(const FrameContext& ctx) {
   };
   const auto consider = [&](std::int32_t j, int near_tier, int level, int rank) {
     if (j < 0 || nodes_[j].depth != level) return;
-    AnchorEntry& e = *nodes_[j].anchor;
+    AnchorEntry& e = materialize(j);
     // A shared centre too deep for a fine cell may still serve the coarser cell it centres.
     if (e.anchor.in_flight() || inside_solid(e, level)) return;
     if (!seen.insert(nodes_[j].key).second) return;

@@ -98,7 +98,7 @@ void ShGraphCore<Dim>::init_child(std::int32_t parent, int c, std::int32_t slot)
     n.key[a] = nodes_[parent].key[a] + static_cast<std::int64_t>(rest % 3 - 1) * step;
     rest /= 3;
   }
-  n.anchor = acquire(n.key);
+  n.anchor = share_existing(n.key);  // the centre child of a considered cell shares its anchor
   nodes_[slot] = n;
 }
 
@@ -151,12 +151,7 @@ void ShGraphCore<Dim>::release_node(std::int32_t i) {
     if (n.link[d] >= 0) nodes_[n.link[d]].link[d ^ 1] = -1;  // links go in pairs
     n.link[d] = -1;
   }
-  auto it = anchors_.find(n.key);
-  if (it != anchors_.end() && --it->second.refs == 0) {
-    forget(&it->second);
-    anchors_.erase(it);
-  }
-  n.anchor = nullptr;
+  release_key(i);
   n.parent = -1;  // dead (slot 0, the root, is never released)
   n.children_with_coefficients = 0;
 }
@@ -213,7 +208,7 @@ bool ShGraphCore<Dim>::grow_towards(const Q& q) {
   root.depth = nodes_[block + c_old].depth - 1;
   root.link.fill(-1);
   root.first_child = block;
-  root.anchor = acquire(key);
+  root.anchor = share_existing(key);
   nodes_[0] = root;
   nodes_[block + c_old].parent = 0;
   for (int c = 0; c < kChildren; ++c) {
@@ -230,10 +225,15 @@ void ShGraphCore<Dim>::shrink_root(int child) {
   for (int c = 0; c < kChildren; ++c) {
     if (c != child) release_node(fc + c);
   }
-  auto it = anchors_.find(nodes_[0].key);
-  if (it != anchors_.end() && --it->second.refs == 0) {
-    forget(&it->second);
-    anchors_.erase(it);
+  // The root gives up its key; its other children went before it, so only a kept centre child
+  // still holds the key.
+  if (nodes_[0].anchor != nullptr) {
+    if (--nodes_[0].anchor->refs == 0) {
+      forget(nodes_[0].anchor);
+      anchors_.erase(nodes_[0].key);
+    }
+  } else if (child != kCentreChild) {
+    ++forgotten_;
   }
   move_node(keep, 0);
   nodes_[0].parent = -1;
@@ -384,7 +384,11 @@ double ShGraphCore<Dim>::cell_size(int depth) const {
 
 template <int Dim>
 glm::dvec3 ShGraphCore<Dim>::node_centre(std::int32_t i) const {
-  if constexpr (Dim == 2) return nodes_[i].anchor->position;
+  if constexpr (Dim == 2) {
+    // The sheet's height there: the anchor's, or what the anchor would be made with.
+    return nodes_[i].anchor != nullptr ? nodes_[i].anchor->position
+                                       : anchor_position(nodes_[i].key);
+  }
   glm::dvec3 p = origin_;
   for (int a = 0; a < Dim; ++a) p[a] += static_cast<double>(nodes_[i].key[a]) * h_;
   return p;
@@ -399,7 +403,7 @@ const CoefficientAnchor* ShGraphCore<Dim>::anchor_at(const glm::dvec3& p, int de
   while (nodes_[i].depth < depth && nodes_[i].first_child >= 0) {
     i = nodes_[i].first_child + child_containing(i, q);
   }
-  if (nodes_[i].depth != depth) return nullptr;
+  if (nodes_[i].depth != depth || nodes_[i].anchor == nullptr) return nullptr;
   return &nodes_[i].anchor->anchor;
 }
 
