@@ -5,7 +5,7 @@
 // track, which a sweep computes once per scenario variant and shares). The one-off costs of a
 // single `ambisim run` are measured apart: world generation and the reference track.
 //
-//   build-perf/bench/bench_run --benchmark_out=run.json --benchmark_out_format=json
+//   build/bench/bench_run --benchmark_out=run.json --benchmark_out_format=json
 //
 // The game's-load target (SPEC section 8): a 60 s rush_hour run with its reference in at most
 // 60 s of CPU on one core. BM_RushHourWorld, BM_RushHourReference and BM_RushHourRun/ambisim
@@ -32,37 +32,35 @@ using namespace ambisim;
 
 namespace {
 
-const Scenario& motorway() {
-  static const Scenario s =
-      load_scenario(std::string(AMBISIM_SOURCE_DIR) + "/scenarios/motorway.json");
+// One scenario of the benchmarks: its record, its world (built on first use) and its reference
+// track (computed by the benchmark that times it, or by the first run that needs it).
+struct BenchScene {
+  explicit BenchScene(const char* file)
+      : scenario(load_scenario(std::string(AMBISIM_SOURCE_DIR) + "/scenarios/" + file)) {}
+  const World& world() {
+    if (!world_) world_ = std::make_unique<const World>(scenario.world);
+    return *world_;
+  }
+  const ReferenceTrack& reference() {
+    if (!track) track = compute_reference_track(scenario, world());
+    return *track;
+  }
+  Scenario scenario;
+  std::shared_ptr<const ReferenceTrack> track;
+
+ private:
+  std::unique_ptr<const World> world_;
+};
+
+BenchScene& motorway() {
+  static BenchScene s("motorway.json");
   return s;
 }
 
-const World& motorway_world() {
-  static const World w{motorway().world};
-  return w;
-}
-
-// Computed once: by BM_MotorwayReference (which times it) or by the first run that needs it.
-std::shared_ptr<const ReferenceTrack> g_reference;
-
-const ReferenceTrack& motorway_reference() {
-  if (!g_reference) g_reference = compute_reference_track(motorway(), motorway_world());
-  return *g_reference;
-}
-
-const Scenario& rush_hour() {
-  static const Scenario s =
-      load_scenario(std::string(AMBISIM_SOURCE_DIR) + "/scenarios/rush_hour.json");
+BenchScene& rush_hour() {
+  static BenchScene s("rush_hour.json");
   return s;
 }
-
-const World& rush_hour_world() {
-  static const World w{rush_hour().world};
-  return w;
-}
-
-std::shared_ptr<const ReferenceTrack> g_rush_hour_reference;
 
 void report(benchmark::State& state, const RunResult& r, double wall_s) {
   const double sim_s = r.summary.duration_s;
@@ -80,66 +78,41 @@ void report(benchmark::State& state, const RunResult& r, double wall_s) {
 }
 
 void BM_RunReferenceOff(benchmark::State& state, const std::string& planner) {
-  const World& w = motorway_world();
+  BenchScene& scene = motorway();
   for (auto _ : state) {
     auto p = make_planner(planner);
-    const RunResult r = simulate_without_reference(motorway(), w, *p);
+    const RunResult r = simulate_without_reference(scene.scenario, scene.world(), *p);
     report(state, r, r.timing.total_s);
   }
 }
 
-void BM_RunReferenceOn(benchmark::State& state, const std::string& planner) {
-  const World& w = motorway_world();
-  const ReferenceTrack& ref = motorway_reference();
+// A run scored against the scene's reference (computed before the timed loop). Both
+// BM_RunReferenceOn (motorway) and BM_RushHourRun (rush_hour's third part, see the top).
+void BM_RunWithReference(benchmark::State& state, BenchScene* scene, const std::string& planner) {
+  const ReferenceTrack& ref = scene->reference();
   for (auto _ : state) {
     auto p = make_planner(planner);
-    const RunResult r = simulate(motorway(), w, ref, *p);
+    const RunResult r = simulate(scene->scenario, scene->world(), ref, *p);
     report(state, r, r.timing.total_s);
+    state.counters["lookups"] = static_cast<double>(r.timing.lookups);
   }
 }
 
 // The one-off parts of `ambisim run`: the world and the reference track.
-void BM_MotorwayWorld(benchmark::State& state) {
+void BM_World(benchmark::State& state, BenchScene* scene) {
   for (auto _ : state) {
-    World w{motorway().world};
+    World w{scene->scenario.world};
     benchmark::DoNotOptimize(w.max_surface());
   }
 }
 
-void BM_MotorwayReference(benchmark::State& state) {
-  const World& w = motorway_world();
+void BM_Reference(benchmark::State& state, BenchScene* scene) {
+  const World& w = scene->world();
   for (auto _ : state) {
-    g_reference = compute_reference_track(motorway(), w);
-    state.counters["captures"] = static_cast<double>(g_reference->captures);
-  }
-}
-
-// The rush_hour run's three parts, each timed on its own (see the top of this file).
-void BM_RushHourWorld(benchmark::State& state) {
-  for (auto _ : state) {
-    World w{rush_hour().world};
-    benchmark::DoNotOptimize(w.max_surface());
-  }
-}
-
-void BM_RushHourReference(benchmark::State& state) {
-  const World& w = rush_hour_world();
-  for (auto _ : state) {
-    g_rush_hour_reference = compute_reference_track(rush_hour(), w);
-    state.counters["captures"] = static_cast<double>(g_rush_hour_reference->captures);
-    state.counters["slots"] = static_cast<double>(g_rush_hour_reference->ids.size());
-    state.counters["interpolated"] = static_cast<double>(g_rush_hour_reference->slots_interpolated);
-  }
-}
-
-void BM_RushHourRun(benchmark::State& state, const std::string& planner) {
-  const World& w = rush_hour_world();
-  if (!g_rush_hour_reference) g_rush_hour_reference = compute_reference_track(rush_hour(), w);
-  for (auto _ : state) {
-    auto p = make_planner(planner);
-    const RunResult r = simulate(rush_hour(), w, *g_rush_hour_reference, *p);
-    report(state, r, r.timing.total_s);
-    state.counters["lookups"] = static_cast<double>(r.timing.lookups);
+    scene->track = compute_reference_track(scene->scenario, w);
+    state.counters["captures"] = static_cast<double>(scene->track->captures);
+    state.counters["slots"] = static_cast<double>(scene->track->ids.size());
+    state.counters["interpolated"] = static_cast<double>(scene->track->slots_interpolated);
   }
 }
 
@@ -148,7 +121,7 @@ void BM_RushHourRun(benchmark::State& state, const std::string& planner) {
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RegisterBenchmark("BM_MotorwayWorld", BM_MotorwayWorld)
+  benchmark::RegisterBenchmark("BM_MotorwayWorld", BM_World, &motorway())
       ->Iterations(1)
       ->Unit(benchmark::kMillisecond);
   for (const auto& info : planner_catalogue()) {
@@ -158,22 +131,23 @@ int main(int argc, char** argv) {
         ->Iterations(1)
         ->Unit(benchmark::kMillisecond);
   }
-  benchmark::RegisterBenchmark("BM_MotorwayReference", BM_MotorwayReference)
+  benchmark::RegisterBenchmark("BM_MotorwayReference", BM_Reference, &motorway())
       ->Iterations(1)
       ->Unit(benchmark::kMillisecond);
   for (const auto& info : planner_catalogue()) {
-    benchmark::RegisterBenchmark(("BM_RunReferenceOn/" + info.name).c_str(), BM_RunReferenceOn,
-                                 info.name)
+    benchmark::RegisterBenchmark(("BM_RunReferenceOn/" + info.name).c_str(), BM_RunWithReference,
+                                 &motorway(), info.name)
         ->Iterations(1)
         ->Unit(benchmark::kMillisecond);
   }
-  benchmark::RegisterBenchmark("BM_RushHourWorld", BM_RushHourWorld)
+  benchmark::RegisterBenchmark("BM_RushHourWorld", BM_World, &rush_hour())
       ->Iterations(1)
       ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("BM_RushHourReference", BM_RushHourReference)
+  benchmark::RegisterBenchmark("BM_RushHourReference", BM_Reference, &rush_hour())
       ->Iterations(1)
       ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("BM_RushHourRun/ambisim", BM_RushHourRun, std::string("ambisim"))
+  benchmark::RegisterBenchmark("BM_RushHourRun/ambisim", BM_RunWithReference, &rush_hour(),
+                               std::string("ambisim"))
       ->Iterations(1)
       ->Unit(benchmark::kMillisecond);
   benchmark::RunSpecifiedBenchmarks();
