@@ -24,9 +24,10 @@ glm::ivec3 FarField::base_cell(const glm::dvec3& x) {
 std::uint64_t FarField::pack(const glm::ivec3& c) { return pack_cell(c.x, c.y, c.z); }
 
 std::int32_t FarField::Level::find(std::uint64_t key) const {
-  if (keys.empty()) return -1;
+  const std::size_t h = hash_cell_key(key);
+  if (!filter.may_hold(h)) return -1;
   const std::size_t mask = keys.size() - 1;
-  for (std::size_t i = hash_cell_key(key) & mask;; i = (i + 1) & mask) {
+  for (std::size_t i = h & mask;; i = (i + 1) & mask) {
     if (keys[i] == key) return index[i];
     if (keys[i] == kEmpty) return -1;
   }
@@ -36,9 +37,12 @@ void FarField::Level::grow() {
   const std::size_t capacity = std::max<std::size_t>(16, 2 * keys.size());
   keys.assign(capacity, kEmpty);
   index.assign(capacity, -1);
+  filter.reset(capacity / 2);  // find_or_insert keeps the load at most one half
   const std::size_t mask = capacity - 1;
   for (std::size_t c = 0; c < cell_keys.size(); ++c) {
-    std::size_t i = hash_cell_key(cell_keys[c]) & mask;
+    const std::size_t h = hash_cell_key(cell_keys[c]);
+    filter.add(h);
+    std::size_t i = h & mask;
     while (keys[i] != kEmpty) i = (i + 1) & mask;
     keys[i] = cell_keys[c];
     index[i] = static_cast<std::int32_t>(c);
@@ -55,6 +59,7 @@ std::int32_t FarField::Level::find_or_insert(std::uint64_t key, bool* inserted) 
     if (keys[i] == key) return index[i];
   }
   keys[i] = key;
+  filter.add(hash_cell_key(key));
   index[i] = static_cast<std::int32_t>(cells.size());
   cells.emplace_back();
   cell_keys.push_back(key);
@@ -157,7 +162,8 @@ std::size_t FarField::bytes() const {
   std::size_t b = cell_of_slot_.capacity() * sizeof(std::int32_t);
   for (const Level& l : levels_) {
     b += l.keys.capacity() * sizeof(std::uint64_t) + l.index.capacity() * sizeof(std::int32_t) +
-         l.cells.capacity() * sizeof(Sums) + l.cell_keys.capacity() * sizeof(std::uint64_t) +
+         l.filter.bytes() + l.cells.capacity() * sizeof(Sums) +
+         l.cell_keys.capacity() * sizeof(std::uint64_t) +
          l.parent.capacity() * sizeof(std::int32_t) + l.first.capacity() * sizeof(std::int32_t) +
          l.members.capacity() * sizeof(std::int32_t) + l.marked.capacity();
   }

@@ -19,6 +19,10 @@
 // cell's sums. (An earlier far field summed probes into coarse cells only once they were
 // steady: each jumped from its own term to its cell's, and viewed pops rose ninefold.)
 //
+// A lookup reads 8 cells per level, most of them empty away from the probes; a one-hash filter
+// per level (CellFilter) answers those finds without probing the table (far field 154 -> 111 ns
+// per lookup at BM_Lookup/ambisim/10000).
+//
 // Input ranges: positions and points finite. Coordinates are clamped to +-2^20 level-0 cells
 // (8,000 km), which only makes a far point's cells empty: it gets the mean of every probe.
 #include <algorithm>
@@ -30,6 +34,7 @@
 #include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
+#include "policies/ambisim/cell_filter.h"
 #include "policies/ambisim/cell_key.h"
 #include "sim/sh/sh9.h"
 
@@ -87,6 +92,7 @@ class FarField {
   struct Level {
     std::vector<std::uint64_t> keys;  // open addressing, capacity a power of two
     std::vector<std::int32_t> index;  // the cell of each key's slot (-1: empty)
+    CellFilter filter;                // over the keys, sized for the table's capacity
     std::vector<Sums> cells;          // in insertion order
     std::vector<std::uint64_t> cell_keys;
     std::vector<std::int32_t> parent;  // each cell's cell in the next level (-1: last level)
@@ -95,7 +101,7 @@ class FarField {
     std::vector<std::int32_t> first;
     std::vector<std::int32_t> members;
     std::vector<std::uint8_t> marked;
-    std::int32_t find(std::uint64_t key) const;
+    std::int32_t find(std::uint64_t key) const;  // its cell, or -1
     std::int32_t find_or_insert(std::uint64_t key, bool* inserted);
     void grow();
   };

@@ -77,6 +77,7 @@ void ProbeIndex::build(std::span<const glm::dvec3> positions, std::span<const do
   };
   for (std::size_t i = 0; i < positions.size(); ++i) {
     Level& level = levels_[level_index(i)];
+    level.reach_m = std::max(level.reach_m, radii[i] + 2.0 * kReachMarginM);
     const glm::dvec3& p = positions[i];
     const glm::ivec3 c(cell_coord(p.x, level.inv_cell), cell_coord(p.y, level.inv_cell),
                        cell_coord(p.z, level.inv_cell));
@@ -98,9 +99,11 @@ void ProbeIndex::build(std::span<const glm::dvec3> positions, std::span<const do
         if (c.key != kEmpty) level.find_or_insert(c.key)->count = c.count;
       }
     }
+    level.filter.reset(cells);
     std::uint32_t next = 0;
     for (Cell& c : level.table) {
       if (c.key == kEmpty) continue;
+      level.filter.add(hash(c.key));
       c.begin = next;
       next += c.count;
       c.count = 0;
@@ -124,7 +127,7 @@ std::size_t ProbeIndex::bytes() const {
   std::size_t b = levels_.capacity() * sizeof(Level);
   for (const Level& level : levels_) {
     b += level.table.capacity() * sizeof(Cell) + level.slots.capacity() * sizeof(std::uint32_t) +
-         level.reach.capacity() * sizeof(Reach);
+         level.reach.capacity() * sizeof(Reach) + level.filter.bytes();
   }
   return b;
 }
