@@ -9,14 +9,6 @@
 
 namespace ambisim {
 
-double Focus::distance(const glm::dvec3& p) const {
-  const glm::dvec3 d = ahead - now;
-  const double len2 = glm::dot(d, d);
-  if (len2 <= 0.0) return glm::length(p - now);
-  const double t = std::clamp(glm::dot(p - now, d) / len2, 0.0, 1.0);
-  return glm::length(p - (now + t * d));
-}
-
 glm::dvec3 predict_position(const FrameContext& ctx, double horizon_s, bool route,
                             double route_snap_m) {
   const glm::dvec3 straight = ctx.camera_position + horizon_s * ctx.camera_velocity;

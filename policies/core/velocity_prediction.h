@@ -3,8 +3,10 @@
 // camera will be when a capture started now becomes usable, plus a look-ahead, and stretch the
 // high-resolution region along the motion. `route` uses the road spline as the game's
 // knowledge of where a car is going (thesis 7.5.3) instead of a straight line.
+#include <algorithm>
 #include <vector>
 
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 #include "sim/planner.h"
@@ -24,7 +26,14 @@ struct Focus {
   glm::dvec3 now{0.0};
   glm::dvec3 ahead{0.0};
   // Distance from p to the focus segment: the "distance to the camera" a planner refines by.
-  double distance(const glm::dvec3& p) const;
+  // Inline: planners call it once or twice per probe per frame.
+  double distance(const glm::dvec3& p) const {
+    const glm::dvec3 d = ahead - now;
+    const double len2 = glm::dot(d, d);
+    if (len2 <= 0.0) return glm::length(p - now);
+    const double t = std::clamp(glm::dot(p - now, d) / len2, 0.0, 1.0);
+    return glm::length(p - (now + t * d));
+  }
 };
 
 // Predicted position after `horizon_s` seconds: straight-line, or along the road.
