@@ -21,18 +21,29 @@ namespace {
 const std::string kSmall = std::string(AMBISIM_SOURCE_DIR) + "/tests/data/small_drive.json";
 const std::string kRushHour = std::string(AMBISIM_SOURCE_DIR) + "/scenarios/rush_hour.json";
 constexpr double kShortcutToleranceDe = 0.5;  // issue budget for any reference shortcut
+
+// A scenario's reference as the scenario sets it (the grid) and at every frame (interval_s 0),
+// over one world.
+struct GridAndEvery {
+  std::shared_ptr<const ReferenceTrack> grid, every;
+};
+GridAndEvery grid_and_every(const Scenario& grid, const World& world) {
+  Scenario every = grid;
+  every.reference.interval_s = 0.0;
+  GridAndEvery t{compute_reference_track(grid, world), compute_reference_track(every, world)};
+  REQUIRE(t.grid->ids == t.every->ids);
+  return t;
+}
 }  // namespace
 
 TEST_CASE("time-grid reference with adaptive refinement stays within 0.5 dE00 of every frame",
           "[reference]") {
-  Scenario every = load_scenario(kSmall);
-  every.reference.interval_s = 0.0;
-  Scenario grid = every;
+  Scenario grid = load_scenario(kSmall);
   grid.reference.interval_s = 0.1;
-  const World world(every.world);
-  const auto a = compute_reference_track(every, world);
-  const auto b = compute_reference_track(grid, world);
-  REQUIRE(a->ids == b->ids);
+  const World world(grid.world);
+  const GridAndEvery tracks = grid_and_every(grid, world);
+  const auto& a = tracks.every;
+  const auto& b = tracks.grid;
   REQUIRE(b->captures < a->captures);  // the shortcut does save captures
   double worst = 0.0;
   for (std::size_t i = 0; i < a->irradiance.size(); ++i) {
@@ -101,14 +112,12 @@ struct ChangeCheck {
 ChangeCheck check_changes(const std::function<void(nlohmann::json&)>& edit) {
   nlohmann::json doc = load_json_file(kSmall);
   edit(doc);
-  Scenario every = parse_scenario(doc, "changing.json");
-  every.reference.interval_s = 0.0;
-  Scenario grid = every;
+  Scenario grid = parse_scenario(doc, "changing.json");
   grid.reference.interval_s = 0.1;
-  const World world(every.world);
-  const auto a = compute_reference_track(every, world);
-  const auto b = compute_reference_track(grid, world);
-  REQUIRE(a->ids == b->ids);
+  const World world(grid.world);
+  const GridAndEvery tracks = grid_and_every(grid, world);
+  const auto& a = tracks.every;
+  const auto& b = tracks.grid;
   ChangeCheck c;
   c.every_captures = a->captures;
   c.grid_captures = b->captures;
@@ -212,13 +221,13 @@ TEST_CASE(
   nlohmann::json doc = load_json_file(kRushHour);
   doc["frames"]["duration_s"] = 4.0;
   const Scenario grid = parse_scenario(doc, kRushHour);
-  Scenario every = grid;
-  every.reference.interval_s = 0.0;
-  Scenario fine = every;
+  Scenario fine = grid;
+  fine.reference.interval_s = 0.0;
   fine.reference.face_size = 48;
   const World world(grid.world);
-  const auto g = compute_reference_track(grid, world);
-  const auto e = compute_reference_track(every, world);
+  const GridAndEvery tracks = grid_and_every(grid, world);
+  const auto& g = tracks.grid;
+  const auto& e = tracks.every;
   const auto t = compute_reference_track(fine, world);
   const Distance from_grid = distance(*g, *t), from_every = distance(*e, *t);
   CAPTURE(from_grid.mean, from_grid.p95, from_grid.p99, from_grid.max, from_every.mean,
