@@ -213,11 +213,11 @@ TEST_CASE(
   // The truth of a receiver moving 0.5 m per frame is itself noisy at 24x24 (point-sampled
   // texels alias: 0.3-0.8 dE00 from one frame to the next), so the 0.1 s grid is judged against
   // a finer truth, not against the 24x24 one it smooths. Measured on the opening 4 s (mean /
-  // p95 / p99 / max dE00 from the 48x48 truth): 24x24 every frame 0.345 / 0.624 / 0.801 / 1.37;
-  // the grid with refine_de 0.25 0.322 / 0.598 / 0.743 / 1.37 (945 captures), with 0.5 (the
-  // scenario's) 0.307 / 0.591 / 0.749 / 1.16 (497); a 1 s grid with refine_de 2 fails:
-  // 0.362 / 0.695 / 1.092 (87). Against the 24x24 truth refine_de 0.25 was already 0.87 off at
-  // worst, 0.5 is 0.86.
+  // p95 / p99 / max over slots of the worst normal's dE00 from the 48x48 truth): 24x24 every frame
+  // 0.345 / 0.624 / 0.801 / 1.37; the grid with refine_de 0.25 0.322 / 0.598 / 0.743 / 1.37 (945
+  // captures), with 0.5 (the scenario's) 0.307 / 0.591 / 0.749 / 1.16 (497); a 1 s grid with
+  // refine_de 2 fails: 0.362 / 0.695 / 1.092 (87). Against the 24x24 truth refine_de 0.25 was
+  // already 0.87 off at worst, 0.5 is 0.86.
   nlohmann::json doc = load_json_file(kRushHour);
   doc["frames"]["duration_s"] = 4.0;
   const Scenario grid = parse_scenario(doc, kRushHour);
