@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sim/base/json_reader.h"
+#include "sim/base/statistics.h"
 #include "sim/metrics/accuracy.h"
 #include "sim/render/capture.h"
 #include "sim/run/reference_track.h"
@@ -195,14 +196,8 @@ Distance distance(const ReferenceTrack& x, const ReferenceTrack& truth) {
     de.push_back(m);
   }
   REQUIRE(!de.empty());
-  Distance d;
-  for (double v : de) d.mean += v;
-  d.mean /= static_cast<double>(de.size());
-  std::sort(de.begin(), de.end());
-  d.p95 = de[de.size() * 95 / 100];
-  d.p99 = de[de.size() * 99 / 100];
-  d.max = de.back();
-  return d;
+  return {mean_of(de), percentile_nearest_rank(de, 95.0), percentile_nearest_rank(de, 99.0),
+          percentile_nearest_rank(de, 100.0)};
 }
 }  // namespace
 
