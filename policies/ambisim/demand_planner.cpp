@@ -628,8 +628,10 @@ std::vector<CaptureRequest> DemandPlanner::plan(const FrameContext& ctx) {
     return ctx.world != nullptr && ctx.world->surface_height ? ctx.world->surface_height(x, y)
                                                              : 0.0;
   };
+  // Every capture this frame can start is planned: consider() and refresh() do nothing more.
+  auto full = [&] { return static_cast<int>(out.size()) >= ctx.startable_captures; };
   auto consider = [&](const glm::dvec3& c) {
-    if (static_cast<int>(out.size()) >= ctx.startable_captures) return;
+    if (full()) return;
     const double d = focus_.distance(c);
     if (d > max_distance_) return;
     double detail = 1.0;
@@ -645,7 +647,7 @@ std::vector<CaptureRequest> DemandPlanner::plan(const FrameContext& ctx) {
   };
   // A stale probe captured again where it stands.
   auto refresh = [&](Probe& q) {
-    if (static_cast<int>(out.size()) >= ctx.startable_captures) return;
+    if (full()) return;
     const std::uint64_t tag = next_tag_++;
     planned_[tag] = {q.position, q.spacing, ctx.time, q.tag, q.drift, light};
     q.refreshing = true;
@@ -747,8 +749,7 @@ std::vector<CaptureRequest> DemandPlanner::plan(const FrameContext& ctx) {
   // and 0.5 of the captures day_cycle's viewed p95 was 2.99 and 2.84 against 1.45 uncapped,
   // sunset_drive's and fog_bank's within 0.05.)
   std::size_t next_stale = 0;
-  // Once the captures are all planned, consider() and refresh() do nothing: stop there.
-  auto full = [&] { return static_cast<int>(out.size()) >= ctx.startable_captures; };
+  // Once full, the rest of the ranking could plan nothing: stop there.
   while (!order.empty() && !full()) {
     std::pop_heap(order.begin(), order.end(), later);
     const Ranked k = order.back();
