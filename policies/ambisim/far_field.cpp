@@ -144,10 +144,24 @@ bool FarField::evaluate(const glm::dvec3& p, Answer& out) const {
   auto gather = [&](int k, const glm::ivec3& c0, const double* w8, Gathered& s) {
     const Level& level = levels_[static_cast<std::size_t>(k)];
     const int lo = -kCoordLimit >> k, hi = (kCoordLimit - 1) >> k;
+    // Corners c0 + (n & 1, (n >> 1) & 1, (n >> 2) & 1). Where all 8 lie in range (every point
+    // within 8,000 km) their keys are c0's plus the offsets, each in its own 21-bit field; the
+    // range test per corner and the packing cost a fifth of a far-field lookup's instructions.
+    const bool inside =
+        c0.x >= lo && c0.x < hi && c0.y >= lo && c0.y < hi && c0.z >= lo && c0.z < hi;
+    const std::uint64_t key0 = inside ? pack(c0) : 0;
     for (int n = 0; n < 8; ++n) {
-      const glm::ivec3 c = c0 + glm::ivec3(n & 1, (n >> 1) & 1, (n >> 2) & 1);
-      if (c.x < lo || c.x > hi || c.y < lo || c.y > hi || c.z < lo || c.z > hi) continue;
-      const std::int32_t i = level.find(pack(c));
+      const glm::ivec3 d(n & 1, (n >> 1) & 1, (n >> 2) & 1);
+      std::uint64_t key;
+      if (inside) {
+        key = key0 + (static_cast<std::uint64_t>(d.x) | (static_cast<std::uint64_t>(d.y) << 21) |
+                      (static_cast<std::uint64_t>(d.z) << 42));
+      } else {
+        const glm::ivec3 c = c0 + d;
+        if (c.x < lo || c.x > hi || c.y < lo || c.y > hi || c.z < lo || c.z > hi) continue;
+        key = pack(c);
+      }
+      const std::int32_t i = level.find(key);
       if (i < 0) continue;
       const Sums& cell = level.cells[static_cast<std::size_t>(i)];
       sh_add_scaled(s.sh, cell.sh, static_cast<float>(w8[n]));
