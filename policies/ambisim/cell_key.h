@@ -12,10 +12,19 @@ namespace ambisim {
 inline constexpr int kCellCoordLimit = 1 << 20;
 inline constexpr std::uint64_t kEmptyCellKey = ~std::uint64_t{0};
 
+inline constexpr int kCellKeyFieldBits = 21;  // per axis
+
 inline std::uint64_t pack_cell(int x, int y, int z) {
-  constexpr std::uint64_t kMask = (std::uint64_t{1} << 21) - 1;
+  constexpr std::uint64_t kMask = (std::uint64_t{1} << kCellKeyFieldBits) - 1;
   const auto u = [](int v) { return static_cast<std::uint64_t>(v + kCellCoordLimit) & kMask; };
-  return u(x) | (u(y) << 21) | (u(z) << 42);
+  return u(x) | (u(y) << kCellKeyFieldBits) | (u(z) << (2 * kCellKeyFieldBits));
+}
+
+// What to add to pack_cell(x, y, z) for the key of (x + dx, y + dy, z + dz), dx, dy, dz in
+// {0, 1}, where every coordinate stays within the limits (then no field carries).
+inline constexpr std::uint64_t cell_key_step(int dx, int dy, int dz) {
+  return static_cast<std::uint64_t>(dx) | (static_cast<std::uint64_t>(dy) << kCellKeyFieldBits) |
+         (static_cast<std::uint64_t>(dz) << (2 * kCellKeyFieldBits));
 }
 
 // A bit mixer (splitmix64's): packed keys of neighbouring cells differ in low bits only.

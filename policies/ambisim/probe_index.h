@@ -177,7 +177,7 @@ void ProbeIndex::for_each_candidate(const glm::dvec3& p, Visit&& visit) const {
     // The ball of radius <= cell / 2 around p meets the cell holding p and, per axis, the
     // neighbour on the side of the nearer face.
     // One floor per axis serves both the cell and p's place in it (without SSE4.1 a floor is a
-    // dozen instructions; the index read them twice, 12 per level).
+    // dozen instructions, and this loop used to take two per axis).
     const double fx = p.x * level.inv_cell, fy = p.y * level.inv_cell, fz = p.z * level.inv_cell;
     const double gx = std::floor(fx), gy = std::floor(fy), gz = std::floor(fz);
     const int x = clamp_cell(gx), y = clamp_cell(gy), z = clamp_cell(gz);
