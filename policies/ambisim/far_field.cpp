@@ -1,6 +1,7 @@
 #include "policies/ambisim/far_field.h"
 
 #include <algorithm>
+#include <array>
 
 namespace ambisim {
 namespace {
@@ -136,8 +137,38 @@ void FarField::build(std::span<const glm::dvec3> positions) {
 }
 
 void FarField::append(const glm::dvec3& position) {
-  cell_of_slot_.push_back(insert(0, base_cell(position)));
-  members_stale_ = true;
+  std::array<std::size_t, kLevels> cells_before{};
+  for (std::size_t k = 0; k < levels_.size(); ++k) cells_before[k] = levels_[k].cells.size();
+  const std::int32_t cell = insert(0, base_cell(position));
+  cell_of_slot_.push_back(cell);
+  if (members_stale_) return;  // the next refill indexes every member anyway
+  // Keep the member lists instead of making them again (with a full fill) at the next refill:
+  // the planner appends a probe on most deliveries, and the full fill after each one was about
+  // a third of its update(). The new slot is the highest, and a new cell the highest of its
+  // level, so each goes last in its owner's list: the lists stay in ascending order, as
+  // index_members() makes them, and the refill sums in the same order.
+  auto add_member = [](Level& level, std::size_t owner, std::int32_t member) {
+    level.members.insert(level.members.begin() + level.first[owner + 1], member);
+    for (std::size_t c = owner + 1; c < level.first.size(); ++c) ++level.first[c];
+  };
+  for (std::size_t k = 0; k < levels_.size(); ++k) {
+    Level& level = levels_[k];
+    for (std::size_t c = cells_before[k]; c < level.cells.size(); ++c) {
+      level.first.push_back(level.first.back());
+      level.marked.push_back(0);
+    }
+    if (k == 0) {
+      add_member(level, static_cast<std::size_t>(cell), static_cast<std::int32_t>(size() - 1));
+    } else {
+      const Level& below = levels_[k - 1];
+      for (std::size_t c = cells_before[k - 1]; c < below.cells.size(); ++c) {
+        add_member(level, static_cast<std::size_t>(below.parent[c]), static_cast<std::int32_t>(c));
+      }
+    }
+  }
+  // Its cell is redone at the next refill (a new cell's ancestors with it: they are marked up
+  // from it).
+  levels_[0].marked[static_cast<std::size_t>(cell)] = 1;
 }
 
 bool FarField::evaluate(const glm::dvec3& p, Answer& out) const {

@@ -65,7 +65,8 @@ class FarField {
 
   // The cells of every level over positions[0, n): slots 0..n-1.
   void build(std::span<const glm::dvec3> positions);
-  // Adds slot size() at position (its sums zero until the next fill).
+  // Adds slot size() at position (its sums zero until the next fill, which includes it: a
+  // refill_marked() redoes its cell and that cell's ancestors).
   void append(const glm::dvec3& position);
   std::size_t size() const { return cell_of_slot_.size(); }
   // Every slot's sums, from add(slot, sums) (which adds that slot's to sums), then up the levels.
@@ -74,8 +75,8 @@ class FarField {
   // The same sums, bit for bit, recomputing only the cells that hold a slot marked since the
   // last fill and their ancestors: a cell sums its slots in slot order and a parent its
   // children in cell order, as fill() does, so an unmarked cell keeps what fill() would give it
-  // again. The caller marks every slot whose add() may have changed. After build() or append()
-  // it is a full fill().
+  // again. The caller marks every slot whose add() may have changed (append() marks its own).
+  // After build() it is a full fill().
   void mark(std::size_t slot);
   template <class AddSlot>
   void refill_marked(AddSlot&& add);
@@ -130,7 +131,7 @@ class FarField {
   std::vector<Level> levels_ = std::vector<Level>(kLevels);
   std::vector<std::int32_t> cell_of_slot_;  // level-0 cell of each slot
   Sums total_;
-  bool members_stale_ = true;  // built or appended since the member lists were made
+  bool members_stale_ = true;  // built since the member lists were made (append() keeps them)
 };
 
 // ---- templates ---------------------------------------------------------------------------

@@ -204,8 +204,11 @@ TEST_CASE("the far field is continuous along a path and in a probe's presence",
 
 TEST_CASE("far field: refilling the marked slots' cells equals a full fill, bit for bit",
           "[ambisim][far_field]") {
-  // Two patches far apart, so some coarse cells hold no marked slot; a probe appended between
-  // refills forces a full one. The oracle is fill() over the same slots and values.
+  // Two patches far apart, so some coarse cells hold no marked slot. Probes are appended
+  // between refills, which keep the member lists (not a full refill): into a cell that holds
+  // slots, into a new cell beside the patch and into new cells of every level far away (two in
+  // one round: a new cell's second member). The oracle is fill() over the same slots and
+  // values.
   std::mt19937_64 rng(41);
   Cloud c = patch(rng, 60.0, 0.0, 0.0);
   const Cloud far = patch(rng, 30.0, 900.0, -400.0);
@@ -219,14 +222,23 @@ TEST_CASE("far field: refilling the marked slots' cells equals a full fill, bit 
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::uniform_int_distribution<std::size_t> pick(0, c.positions.size() - 1);
   const std::vector<glm::dvec3> points = {
-      {1.0, 2.0, 3.0}, {25.0, -40.0, 1.0}, {905.0, -390.0, 2.0}, {450.0, -200.0, 50.0}};
+      {1.0, 2.0, 3.0},   {25.0, -40.0, 1.0},        {905.0, -390.0, 2.0}, {450.0, -200.0, 50.0},
+      {70.0, 12.0, 3.0}, {20e3 - 10.0, -35e3, 8.0}, {15e3, -30e3, 100.0}};
   for (int round = 0; round < 20; ++round) {
-    if (round == 7) {  // a new probe: the member lists are stale, the refill is a full one
-      c.positions.push_back({70.0, 10.0, 2.0});
-      c.weights.push_back(0.5);
-      c.values.push_back(value_of(0.2f, 0.3f, 0.4f));
-      incremental.append(c.positions.back());
+    auto append = [&](const glm::dvec3& at) {
+      c.positions.push_back(at);
+      c.weights.push_back(unit(rng));
+      c.values.push_back(value_of(0.2f, 0.3f, static_cast<float>(unit(rng))));
+      incremental.append(at);
+    };
+    if (round == 3) append({1.5, 2.5, 2.0});      // a cell of the first patch
+    if (round == 7) append({70.0, 10.0, 2.0});    // a new level-0 cell beside it
+    if (round == 11) append({20e3, -35e3, 9.0});  // new cells up to the coarsest level
+    if (round == 13) {
+      append({20e3 + 3.0, -35e3 + 1.0, 9.0});  // the same cell again, and one beside it
+      append({20e3 - 40.0, -35e3 + 20.0, 9.0});
     }
+    if (round == 17) append({905.0, -395.0, 2.0});  // a cell of the far patch
     for (int k = 0; k < 5; ++k) {
       const std::size_t i = pick(rng);
       c.weights[i] = unit(rng);
