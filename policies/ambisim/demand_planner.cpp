@@ -61,6 +61,18 @@ Rgb scene_light(const LightingInfo& info) {
 
 double luminance_l00(const Sh9Rgb& sh) { return luminance(sh.c[0]); }
 
+// Whether x may lie nearer to c than best: false only when its squared distance exceeds best^2
+// (widened far past rounding), so that a square root is taken only where it can matter.
+bool may_beat(const glm::dvec3& x, const glm::dvec3& c, double best) {
+  const glm::dvec3 v = x - c;
+  return !(v.x * v.x + v.y * v.y + v.z * v.z > best * best * (1.0 + 1e-9));
+}
+
+// best, or x's distance to c where that is shorter.
+double nearer_than(const glm::dvec3& x, const glm::dvec3& c, double best) {
+  return may_beat(x, c, best) ? std::min(best, glm::distance(x, c)) : best;
+}
+
 }  // namespace
 
 PlannerInfo DemandPlanner::info() {
@@ -573,31 +585,28 @@ double DemandPlanner::nearest_distance(const glm::dvec3& c, double* detail) cons
 
 double DemandPlanner::nearest_beyond_index(const glm::dvec3& c, std::int64_t n, double best,
                                            double* detail) const {
-  *detail = 1.0;
-  auto staying = [&](std::size_t i) { return probes_[i].fade_out_start < 0.0; };
+  nearest_in_tail(c, index_.size(), n, best);
+  *detail = n >= 0 ? probes_[static_cast<std::size_t>(n)].detail : 1.0;
+  for (const auto* m : {&planned_, &in_flight_}) {
+    for (const auto& [tag, f] : *m) best = nearer_than(f.position, c, best);
+  }
+  return best;
+}
+
+void DemandPlanner::nearest_in_tail(const glm::dvec3& c, std::size_t from, std::int64_t& n,
+                                    double& best) const {
   // The square root only for points that may be nearer than the best so far: a squared
   // distance beyond best^2 (widened far past rounding) cannot give a shorter distance, and the
-  // ones that pass are compared exactly as before. Planning calls this once per object a frame
-  // (over the unindexed tail and the captures in flight), and the roots were most of its cost.
-  auto may_beat = [&](const glm::dvec3& x) {
-    const glm::dvec3 v = x - c;
-    return !(v.x * v.x + v.y * v.y + v.z * v.z > best * best * (1.0 + 1e-9));
-  };
-  for (std::size_t i = index_.size(); i < probes_.size(); ++i) {
-    if (!staying(i) || !may_beat(probes_[i].position)) continue;
+  // ones that pass are compared exactly as before. Planning calls this once per object a frame,
+  // and the roots were most of its cost.
+  for (std::size_t i = from; i < probes_.size(); ++i) {
+    if (probes_[i].fade_out_start >= 0.0 || !may_beat(probes_[i].position, c, best)) continue;
     const double d = glm::distance(probes_[i].position, c);
     if (d < best) {
       best = d;
       n = static_cast<std::int64_t>(i);
     }
   }
-  if (n >= 0) *detail = probes_[static_cast<std::size_t>(n)].detail;
-  for (const auto* m : {&planned_, &in_flight_}) {
-    for (const auto& [tag, f] : *m) {
-      if (may_beat(f.position)) best = std::min(best, glm::distance(f.position, c));
-    }
-  }
-  return best;
 }
 
 glm::dvec3 DemandPlanner::capture_point(const FrameContext& ctx, const glm::dvec3& p) const {
@@ -676,6 +685,12 @@ std::vector<CaptureRequest> DemandPlanner::plan(const FrameContext& ctx) {
   auto staying = [&](std::uint32_t i) { return probes_[i].fade_out_start < 0.0; };
   auto position_of = [&](std::uint32_t i) -> const glm::dvec3& { return probes_[i].position; };
   nearest_memo_.resize(receivers_.size());
+  // The captures in flight (none planned yet), read by every object: in one array, not a map.
+  std::vector<glm::dvec3> pending;
+  pending.reserve(planned_.size() + in_flight_.size());
+  for (const auto* m : {&planned_, &in_flight_}) {
+    for (const auto& [tag, f] : *m) pending.push_back(f.position);
+  }
   for (std::size_t i = 0; i < receivers_.size(); ++i) {
     const ReceiverView& r = receivers_[i];
     const glm::dvec3 at = r.position + horizon * r.velocity;
@@ -684,10 +699,12 @@ std::vector<CaptureRequest> DemandPlanner::plan(const FrameContext& ctx) {
     if (d > max_distance_) continue;
     const double spacing = required_spacing(d);
     NearestMemo& m = nearest_memo_[i];
-    if (!(m.id == r.id && m.at == at && m.build == index_builds_ && m.probe >= 0 &&
+    const auto build = static_cast<std::uint32_t>(index_builds_);
+    if (!(m.id == r.id && m.at == at && m.build == build && m.probe >= 0 &&
           staying(static_cast<std::uint32_t>(m.probe)))) {
       double ignored = 0.0;
-      m = {r.id, at, index_builds_, index_.nearest(at, position_of, staying, &ignored)};
+      m = {r.id, at, build,
+           static_cast<std::int32_t>(index_.nearest(at, position_of, staying, &ignored))};
     }
     // The nearest indexed probe's squared distance, as the index computes it: within a quarter
     // spacing exactly when any staying indexed probe is (ProbeIndex::any_within).
@@ -701,8 +718,23 @@ std::vector<CaptureRequest> DemandPlanner::plan(const FrameContext& ctx) {
       u_refused = std::min(u_refused, 0.5);  // its need is at most 0.25
       continue;
     }
-    double detail = 1.0;
-    const double gap = nearest_beyond_index(at, m.probe, std::sqrt(d2), &detail);
+    // The tail: from the memo's nearest while it stays, over the probes delivered since.
+    if (m.tail_to == kTailNotScanned ||
+        (m.tail_probe >= 0 && !staying(static_cast<std::uint32_t>(m.tail_probe)))) {
+      m.tail_to = static_cast<std::uint32_t>(index_.size());
+      m.tail_probe = m.probe;
+    }
+    std::int64_t nearest = m.tail_probe;
+    // Its distance as the scan found it: the indexed probe's from d2, a tail probe's by
+    // glm::distance, as nearest_in_tail() computes it.
+    double gap = nearest == m.probe
+                     ? std::sqrt(d2)
+                     : glm::distance(probes_[static_cast<std::size_t>(nearest)].position, at);
+    nearest_in_tail(at, m.tail_to, nearest, gap);
+    m.tail_to = static_cast<std::uint32_t>(probes_.size());
+    m.tail_probe = static_cast<std::int32_t>(nearest);
+    const double detail = nearest >= 0 ? probes_[static_cast<std::size_t>(nearest)].detail : 1.0;
+    for (const glm::dvec3& x : pending) gap = nearer_than(x, at, gap);
     const double need = by_need_ ? gap / (spacing * detail) : -to_camera;
     if (gap <= 0.5 * spacing * detail) {
       u_refused =

@@ -176,6 +176,9 @@ class DemandPlanner final : public Planner {
   // n < 0: none): the unindexed tail and the pending captures added.
   double nearest_beyond_index(const glm::dvec3& c, std::int64_t n, double best,
                               double* detail) const;
+  // The staying probes of the unindexed tail from slot `from` on: n and best become the nearest
+  // where one is nearer than best (ties keep the earlier).
+  void nearest_in_tail(const glm::dvec3& c, std::size_t from, std::int64_t& n, double& best) const;
   // The probe's value at the lamps' current level (its lamp layer added).
   Sh9Rgb current(const Probe& q) const;
   // What the probe shows now: current() as it fades in from what was shown before.
@@ -228,12 +231,23 @@ class DemandPlanner final : public Planner {
   // point and index build. Between rebuilds the indexed probes only leave (new ones join the
   // scanned tail), so while that probe stays it is still the nearest (ties go to the lower
   // slot in both): plan() then skips the index search, the bulk of its cost per receiver.
+  // Likewise the tail: its probes only join (at the end) or leave, so the nearest of the tail
+  // slots before tail_to, with the indexed one, stays the nearest of them while it stays, and
+  // plan() scans only the probes delivered since (the whole tail of 32 per receiver was most of
+  // a frame's receiver pass).
+  // 48 bytes, as before the tail was memoised (the planner's bytes count them): slots and the
+  // build in 32 bits. A memo of a build 2^32 rebuilds ago would pass for current, which takes
+  // as many deliveries.
+  static constexpr std::uint32_t kTailNotScanned = static_cast<std::uint32_t>(-1);
   struct NearestMemo {
     std::uint64_t id = 0;
     glm::dvec3 at{0.0};
-    std::uint64_t build = 0;
-    std::int64_t probe = -1;
+    std::uint32_t build = 0;
+    std::int32_t probe = -1;
+    std::uint32_t tail_to = kTailNotScanned;  // tail slots [index size, tail_to) were scanned
+    std::int32_t tail_probe = -1;             // the nearest of them and of `probe` (-1: none)
   };
+  static_assert(sizeof(NearestMemo) == 48, "a receiver's memo outgrew its 48 bytes");
   std::vector<NearestMemo> nearest_memo_;
   std::uint64_t index_builds_ = 0;  // reindex() calls: a memo of an older build is void
   std::uint64_t next_tag_ = 1;
