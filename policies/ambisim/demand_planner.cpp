@@ -577,14 +577,9 @@ bool DemandPlanner::evaluate_far_field_reference(const glm::dvec3& p, FarField::
 
 double DemandPlanner::nearest_distance(const glm::dvec3& c, double* detail) const {
   double best = 0.0;
-  const std::int64_t n = index_.nearest(
+  std::int64_t n = index_.nearest(
       c, [&](std::uint32_t i) -> const glm::dvec3& { return probes_[i].position; },
       [&](std::uint32_t i) { return probes_[i].fade_out_start < 0.0; }, &best);
-  return nearest_beyond_index(c, n, best, detail);
-}
-
-double DemandPlanner::nearest_beyond_index(const glm::dvec3& c, std::int64_t n, double best,
-                                           double* detail) const {
   nearest_in_tail(c, index_.size(), n, best);
   *detail = n >= 0 ? probes_[static_cast<std::size_t>(n)].detail : 1.0;
   for (const auto* m : {&planned_, &in_flight_}) {
@@ -595,10 +590,8 @@ double DemandPlanner::nearest_beyond_index(const glm::dvec3& c, std::int64_t n, 
 
 void DemandPlanner::nearest_in_tail(const glm::dvec3& c, std::size_t from, std::int64_t& n,
                                     double& best) const {
-  // The square root only for points that may be nearer than the best so far: a squared
-  // distance beyond best^2 (widened far past rounding) cannot give a shorter distance, and the
-  // ones that pass are compared exactly as before. Planning calls this once per object a frame,
-  // and the roots were most of its cost.
+  // The square root only for probes that may be nearer than the best so far (may_beat): the
+  // roots were most of this scan's cost when it covered the whole tail for every object.
   for (std::size_t i = from; i < probes_.size(); ++i) {
     if (probes_[i].fade_out_start >= 0.0 || !may_beat(probes_[i].position, c, best)) continue;
     const double d = glm::distance(probes_[i].position, c);

@@ -172,10 +172,6 @@ class DemandPlanner final : public Planner {
   bool evaluate_far_field_reference(const glm::dvec3& p, FarField::Answer& out) const;
   // Distance from c to the nearest probe or pending capture, and the local detail factor.
   double nearest_distance(const glm::dvec3& c, double* detail) const;
-  // The same from the index's answer (the nearest staying indexed probe n at distance best;
-  // n < 0: none): the unindexed tail and the pending captures added.
-  double nearest_beyond_index(const glm::dvec3& c, std::int64_t n, double best,
-                              double* detail) const;
   // The staying probes of the unindexed tail from slot `from` on: n and best become the nearest
   // where one is nearer than best (ties keep the earlier).
   void nearest_in_tail(const glm::dvec3& c, std::size_t from, std::int64_t& n, double& best) const;
@@ -233,8 +229,8 @@ class DemandPlanner final : public Planner {
   // slot in both): plan() then skips the index search, the bulk of its cost per receiver.
   // Likewise the tail: its probes only join (at the end) or leave, so the nearest of the tail
   // slots before tail_to, with the indexed one, stays the nearest of them while it stays, and
-  // plan() scans only the probes delivered since (the whole tail of 32 per receiver was most of
-  // a frame's receiver pass).
+  // plan() scans only the probes delivered since (the whole tail, up to 32, for every receiver
+  // was about a quarter of BM_FrameReceivers/ambisim/1000's receiver pass).
   // 48 bytes, as before the tail was memoised (the planner's bytes count them): slots and the
   // build in 32 bits. A memo of a build 2^32 rebuilds ago would pass for current, which takes
   // as many deliveries.

@@ -144,9 +144,9 @@ void FarField::append(const glm::dvec3& position) {
   if (members_stale_) return;  // the next refill indexes every member anyway
   // Keep the member lists instead of making them again (with a full fill) at the next refill:
   // the planner appends a probe on most deliveries, and the full fill after each one was about
-  // a third of its update(). The new slot is the highest, and a new cell the highest of its
-  // level, so each goes last in its owner's list: the lists stay in ascending order, as
-  // index_members() makes them, and the refill sums in the same order.
+  // a quarter of its update() (BM_Frame/ambisim/1000). The new slot is the highest, and a new cell
+  // the highest of its level, so each goes last in its owner's list: the lists stay in ascending
+  // order, as index_members() makes them, and the refill sums in the same order.
   auto add_member = [](Level& level, std::size_t owner, std::int32_t member) {
     level.members.insert(level.members.begin() + level.first[owner + 1], member);
     for (std::size_t c = owner + 1; c < level.first.size(); ++c) ++level.first[c];
