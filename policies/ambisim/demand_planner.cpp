@@ -322,7 +322,7 @@ double DemandPlanner::kernel(const Probe& q, double d2) const {
 }
 
 bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* meta,
-                                bool reference) const {
+                                bool reference, FarField::CornerMemo* memo) const {
   // Two blends: the bumps (compact, found by the index) and, only where the bumps' total weight
   // is below bump_confidence(), the far field (policies/ambisim/far_field.h: the probes' pull-push
   // pyramid, a few cells read per level whatever the number of probes). The answer is
@@ -398,7 +398,7 @@ bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* 
   // once only with fade_s = 0) is in the bumps alone until then.
   if (alpha < 1.0 && (far_scan_   ? scan_tail(p, far)
                       : reference ? evaluate_far_field_reference(p, far)
-                                  : far_.evaluate(p, far))) {
+                                  : far_.evaluate(p, far, memo))) {
     // The bump contributors keep their shares of the mix; the far field's are not probes.
     const double a = total > 0.0 ? alpha / total : 0.0;  // per unit of bump weight
     const float b = static_cast<float>(1.0 - alpha);
@@ -452,14 +452,19 @@ bool DemandPlanner::interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* 
   return true;
 }
 
-LookupResult DemandPlanner::lookup_with(const glm::dvec3& p, bool reference) const {
-  LookupResult r;
-  if (!interpolate(p, r.sh, &r, reference)) {
+void DemandPlanner::lookup_into(const glm::dvec3& p, bool reference, FarField::CornerMemo* memo,
+                                LookupResult& r) const {
+  if (!interpolate(p, r.sh, &r, reference, memo)) {
     r.sh = default_sh_;
     r.fell_back = true;
     r.spacing_m = std::numeric_limits<double>::infinity();
     r.data_time = now_;
   }
+}
+
+LookupResult DemandPlanner::lookup_with(const glm::dvec3& p, bool reference) const {
+  LookupResult r;
+  lookup_into(p, reference, nullptr, r);
   return r;
 }
 
@@ -490,9 +495,14 @@ LookupResult DemandPlanner::lookup_reference(const glm::dvec3& p) const {
 }
 
 void DemandPlanner::lookup_many(const LookupPoints& points, std::vector<LookupResult>& out) const {
-  out.resize(points.size());
+  // Each answer is lookup()'s, bit for bit. A frame's points share the far field's cell blocks
+  // (the memo saves their finds), and each result is written in place rather than copied. (A
+  // memo of the index's cells was tried as well: its finer cells repeat less, and it made the
+  // batch slower, 2.3 -> 2.6 ms at BM_LookupMany/ambisim/10000.)
+  out.assign(points.size(), LookupResult{});
+  FarField::CornerMemo memo(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
-    out[i] = lookup_with({points.x[i], points.y[i], points.z[i]}, false);
+    lookup_into({points.x[i], points.y[i], points.z[i]}, false, &memo, out[i]);
   }
 }
 

@@ -146,8 +146,13 @@ class DemandPlanner final : public Planner {
   };
   Look look_of(const Probe& q) const;
   // Interpolated coefficients at p from the current probes; false if none is present. The
-  // index finds the probes (the linear scan when `reference`).
-  bool interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* meta, bool reference) const;
+  // index finds the probes (the linear scan when `reference`); a batch passes its far-field
+  // memo (the same answer from fewer finds).
+  bool interpolate(const glm::dvec3& p, Sh9Rgb& out, LookupResult* meta, bool reference,
+                   FarField::CornerMemo* memo = nullptr) const;
+  // The lookup at p into r (default-constructed: the fields interpolate() leaves are zero).
+  void lookup_into(const glm::dvec3& p, bool reference, FarField::CornerMemo* memo,
+                   LookupResult& r) const;
   LookupResult lookup_with(const glm::dvec3& p, bool reference) const;
   // Faded out: weighs nothing, waits to be dropped from probes_.
   bool gone(const Probe& q) const;

@@ -171,33 +171,55 @@ void FarField::append(const glm::dvec3& position) {
   levels_[0].marked[static_cast<std::size_t>(cell)] = 1;
 }
 
-bool FarField::evaluate(const glm::dvec3& p, Answer& out) const {
+bool FarField::evaluate(const glm::dvec3& p, Answer& out, CornerMemo* memo) const {
   auto gather = [&](int k, const glm::ivec3& c0, const double* w8, Gathered& s) {
     const Level& level = levels_[static_cast<std::size_t>(k)];
+    auto add = [&](int n, std::int32_t i) {
+      const Sums& cell = level.cells[static_cast<std::size_t>(i)];
+      sh_add_scaled(s.sh, cell.sh, static_cast<float>(w8[n]));
+      s.weight += w8[n] * cell.weight;
+      s.time += w8[n] * cell.time;
+    };
     const int lo = -kCoordLimit >> k, hi = (kCoordLimit - 1) >> k;
     // Corners c0 + (n & 1, (n >> 1) & 1, (n >> 2) & 1). Where all 8 lie in range (every point
     // within 8,000 km) their keys are c0's plus a step (cell_key_step), under one range test:
     // a test and a packing per corner took about a fifth of the far field's instructions.
     const bool inside =
         c0.x >= lo && c0.x < hi && c0.y >= lo && c0.y < hi && c0.z >= lo && c0.z < hi;
-    const std::uint64_t key0 = inside ? pack(c0) : 0;
-    for (int n = 0; n < 8; ++n) {
-      const int dx = n & 1, dy = (n >> 1) & 1, dz = (n >> 2) & 1;
-      std::uint64_t key;
-      if (inside) {
-        key = key0 + cell_key_step(dx, dy, dz);
-      } else {
-        const glm::ivec3 c = c0 + glm::ivec3(dx, dy, dz);
+    if (!inside) {
+      for (int n = 0; n < 8; ++n) {
+        const glm::ivec3 c = c0 + glm::ivec3(n & 1, (n >> 1) & 1, (n >> 2) & 1);
         if (c.x < lo || c.x > hi || c.y < lo || c.y > hi || c.z < lo || c.z > hi) continue;
-        key = pack(c);
+        const std::int32_t i = level.find(pack(c));
+        if (i >= 0) add(n, i);
       }
-      const std::int32_t i = level.find(key);
-      if (i < 0) continue;
-      const Sums& cell = level.cells[static_cast<std::size_t>(i)];
-      sh_add_scaled(s.sh, cell.sh, static_cast<float>(w8[n]));
-      s.weight += w8[n] * cell.weight;
-      s.time += w8[n] * cell.time;
+      return;
     }
+    const std::uint64_t key0 = pack(c0);
+    auto corner_cell = [&](int n) {
+      return level.find(key0 + cell_key_step(n & 1, (n >> 1) & 1, (n >> 2) & 1));
+    };
+    if (memo == nullptr) {
+      for (int n = 0; n < 8; ++n) {
+        const std::int32_t i = corner_cell(n);
+        if (i >= 0) add(n, i);
+      }
+      return;
+    }
+    std::vector<CornerMemo::Block>& blocks = memo->levels_[static_cast<std::size_t>(k)];
+    if (blocks.empty()) blocks.resize(memo->blocks_);
+    CornerMemo::Block& b = blocks[hash_cell_key(key0) & (memo->blocks_ - 1)];
+    if (b.key != key0) {
+      b.key = key0;
+      b.count = 0;
+      for (int n = 0; n < 8; ++n) {
+        const std::int32_t i = corner_cell(n);
+        if (i < 0) continue;
+        b.cell[b.count] = i;
+        b.corner[b.count++] = static_cast<std::uint8_t>(n);
+      }
+    }
+    for (int j = 0; j < b.count; ++j) add(b.corner[j], b.cell[j]);
   };
   return blend(p, gather, total_, out);
 }

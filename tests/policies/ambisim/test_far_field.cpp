@@ -3,6 +3,7 @@
 // mean), against its own reference scan, and for continuity in space and in the probes' weights.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "policies/ambisim/far_field.h"
@@ -159,6 +160,46 @@ TEST_CASE("the far field equals its reference scan, in and far beyond the probes
     ++compared;
   }
   CHECK(compared == 400);
+}
+
+TEST_CASE("far field: a batch's corner memo gives the same answers, bit for bit",
+          "[ambisim][far_field]") {
+  std::mt19937_64 rng(8);
+  Cloud c = patch(rng, 40.0, 0.0, 0.0);
+  const Cloud d = patch(rng, 6.0, 200.0, -60.0);
+  for (std::size_t i = 0; i < d.positions.size(); ++i) {
+    c.positions.push_back(d.positions[i]);
+    c.weights.push_back(d.weights[i]);
+    c.values.push_back(d.values[i]);
+  }
+  const FarField f = filled(c);
+  // Points that repeat blocks (a dense cloud), that do not (spread over 6 km), and far beyond
+  // the clamped cells (where no block is memoised), in one batch.
+  std::vector<glm::dvec3> points;
+  std::uniform_real_distribution<double> dense(-50.0, 50.0), spread(-3e3, 3e3), z(-5.0, 30.0);
+  for (int k = 0; k < 3000; ++k) {
+    const int kind = k % 10;
+    points.push_back(kind < 7   ? glm::dvec3{dense(rng), dense(rng), z(rng)}
+                     : kind < 9 ? glm::dvec3{spread(rng), spread(rng), z(rng)}
+                                : glm::dvec3{spread(rng) * 1e4, 2e7, z(rng)});
+  }
+  // A memo of 16 blocks per level (a batch of one) evicts all the time; one for the whole batch
+  // mostly hits. Both must leave every answer as it is without a memo.
+  for (std::size_t batch : {std::size_t{1}, points.size()}) {
+    FarField::CornerMemo memo(batch);
+    int same = 0;
+    for (const glm::dvec3& p : points) {
+      FarField::Answer plain, memoised;
+      REQUIRE(f.evaluate(p, plain));
+      REQUIRE(f.evaluate(p, memoised, &memo));
+      INFO("batch " << batch << ", point " << p.x << " " << p.y << " " << p.z);
+      REQUIRE(std::memcmp(&plain.sh, &memoised.sh, sizeof(Sh9Rgb)) == 0);
+      REQUIRE(plain.data_time == memoised.data_time);
+      REQUIRE(plain.cell_m == memoised.cell_m);
+      ++same;
+    }
+    CHECK(same == static_cast<int>(points.size()));
+  }
 }
 
 TEST_CASE("the far field is continuous along a path and in a probe's presence",
