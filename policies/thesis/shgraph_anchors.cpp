@@ -24,13 +24,13 @@ AnchorEntry& ShGraphCore<Dim>::materialize(std::int32_t i) {
   const Key key = nodes_[i].key;
   auto [it, inserted] = anchors_.try_emplace(key);
   AnchorEntry& e = it->second;  // inserted: by the invariant no node of the chain had one
-  e.position = anchor_position(key);
-  e.capture = capture_position(e.position);
-  e.relocation_m = e.capture.z - e.position.z;
+  const glm::dvec3 position = anchor_position(key);
+  const glm::dvec3 capture = capture_position(position);  // moves only vertically
+  e.position_z = position.z;
+  e.capture_z = capture.z;
   // Its light is attributed where it was captured, never at the nominal point inside a solid
   // (L318). The sheet weighs horizontal distances only, and moves sets only vertically.
-  for (int a = 0; a < Dim; ++a) e.at_q[a] = static_cast<double>(key[a]);
-  if constexpr (Dim == 3) e.at_q.z = (e.capture.z - origin_.z) / h_;
+  if constexpr (Dim == 3) e.capture_qz = (capture.z - origin_.z) / h_;
   // Every node of the chain: up while the node is its parent's centre child, then down.
   std::int32_t top = i;
   while (nodes_[top].parent >= 0 && nodes_[nodes_[top].parent].first_child + kCentreChild == top) {
@@ -95,7 +95,7 @@ void ShGraphCore<Dim>::deliver(const FinishedProbe& probe) {
   const Sh9Rgb sh = s_.format.store(probe.sh);
   if (!anchor.has_coefficients() && s_.fade_from_lookup && s_.timing.fade_s > 0.0) {
     // D8: fade from what a lookup showed here just before, so the new set does not pop.
-    const LookupResult before = lookup(a->second.position);
+    const LookupResult before = lookup(anchor_point(key, a->second.position_z));
     if (before.contributor_count > 0) {
       set_coefficients(&a->second, sh, probe, &before.sh, before.data_time);
       return;

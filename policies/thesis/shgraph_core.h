@@ -31,16 +31,21 @@
 
 namespace ambisim {
 
-// The anchor plus where it stands and how many nodes share it (the centre chain).
+// The anchor plus where it stands and how many nodes share it (the centre chain). Its x and y
+// are its key's (ShGraphCore::anchor_point); only the heights a key does not give are stored,
+// 24 bytes instead of the 80 of three points and a relocation (issue 15's memory target).
 struct AnchorEntry {
   CoefficientAnchor anchor;
-  glm::dvec3 position{0.0};   // nominal: the node centre (on a sheet: at the sheet height)
-  glm::dvec3 capture{0.0};    // where it is captured and its light is attributed (D14)
-  glm::dvec3 at_q{0.0};       // capture, in key units (h) from the origin: what lookups weigh by
-  double relocation_m = 0.0;  // capture.z - position.z: how far it was moved out of a solid
-  bool dropped_in_solid = false;  // refused once for standing too deep inside a solid (L318)
-  double entered_at = 0.0;        // when its current run of sets began (the pattern blend, 7.6)
+  // Where it is captured and its light is attributed (D14), in key units (h) from the origin:
+  // what a lookup weighs by, beside the key's x and y (a volume only; a sheet weighs x and y).
+  // Next to the set's flag, so that a lookup's test of a cell reads one cache line of it.
+  double capture_qz = 0.0;
+  double position_z = 0.0;  // nominal: the node centre's (on a sheet: the sheet's height there)
+  double capture_z = 0.0;   // moved up out of terrain and canopy (L318); the relocation is the
+                            // difference from position_z
+  double entered_at = 0.0;  // when its current run of sets began (the pattern blend, 7.6)
   std::int32_t refs = 0;
+  bool dropped_in_solid = false;  // refused once for standing too deep inside a solid (L318)
 };
 
 template <int Dim>
@@ -100,11 +105,22 @@ class ShGraphCore {
   using Q = std::array<double, Dim>;  // a position in h units from the origin
 
   Q to_q(const glm::dvec3& p) const;
+  // Where a lookup weighs an anchor, in key units: its key's x and y and, in a volume, its
+  // capture height.
+  static Q capture_q(const Key& key, const AnchorEntry& e) {
+    Q at;
+    for (int a = 0; a < Dim; ++a) at[a] = static_cast<double>(key[a]);
+    if constexpr (Dim == 3) at[2] = e.capture_qz;
+    return at;
+  }
   std::int64_t half(int depth) const { return pow3_[dmax_ - depth]; }
   bool contains(std::int32_t i, const Q& q) const;
   int child_containing(std::int32_t i, const Q& q) const;
   glm::dvec3 anchor_position(const Key& key) const;
   glm::dvec3 capture_position(const glm::dvec3& nominal) const;
+  // An anchor's point at one of its stored heights (position_z, capture_z): x and y from its key,
+  // the same values anchor_position() gave it.
+  glm::dvec3 anchor_point(const Key& key, double z) const;
 
   // The anchors are made lazily, and the invariant is: an entry exists for a key iff some live
   // node with that key was considered by plan(), and then every live node with the key points
@@ -147,7 +163,9 @@ class ShGraphCore {
   // (lookup_into's recursion) read the same path from a shallower level.
   struct LookupPath {
     Q q{};
-    std::array<std::int32_t, kMaxLevels> nodes{};
+    // Left uninitialised: only [0, count) is written and read (zeroing 160 bytes per lookup
+    // showed in its profile).
+    std::array<std::int32_t, kMaxLevels> nodes;
     int count = 0;
     bool outside = false;  // beyond the root: the answer is only a coarse default
   };

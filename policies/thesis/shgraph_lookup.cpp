@@ -42,7 +42,7 @@ bool ShGraphCore<Dim>::lookup_into(const LookupPath& lp, LookupResult& r, int ab
   std::array<Best, kOctants> best{}, chosen{};
   int chosen_depth = 0;
   bool have = false;
-  std::array<std::int32_t, kChildren> cells{};
+  std::array<std::int32_t, kChildren> cells;  // every entry written by neighbourhood()
   for (int k = count - 1; k >= 0; --k) {
     const std::int32_t i = path[k];
     if (nodes_[i].depth >= above_depth) continue;
@@ -60,10 +60,11 @@ bool ShGraphCore<Dim>::lookup_into(const LookupPath& lp, LookupResult& r, int ab
         if (j < 0) continue;
         const AnchorEntry* e = nodes_[j].anchor;
         if (e == nullptr || !e->anchor.has_coefficients()) continue;
+        const Q at = capture_q(nodes_[j].key, *e);
         double d2 = 0.0;
         int oct = 0;
         for (int a = 0; a < Dim; ++a) {
-          const double dq = e->at_q[a] - q[a];
+          const double dq = at[a] - q[a];
           d2 += dq * dq;
           if (dq >= 0.0) oct |= 1 << a;
         }
@@ -78,10 +79,11 @@ bool ShGraphCore<Dim>::lookup_into(const LookupPath& lp, LookupResult& r, int ab
         const Node& nd = nodes[j];
         const AnchorEntry* e = nd.anchor;  // null: never considered, so no set
         if (e == nullptr || !e->anchor.has_coefficients()) continue;
+        const Q at = capture_q(nd.key, *e);  // x and y from the node, in cache already
         double d2 = 0.0;
         int oct = 0;
         for (int a = 0; a < Dim; ++a) {
-          const double dq = e->at_q[a] - q[a];
+          const double dq = at[a] - q[a];
           d2 += dq * dq;
           oct |= (dq >= 0.0 ? 1 : 0) << a;
         }

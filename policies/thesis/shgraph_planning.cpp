@@ -82,7 +82,8 @@ std::vector<CaptureRequest> ShGraphCore<Dim>::plan(const FrameContext& ctx) {
   std::set<Key> seen;
   // Cells whose set would stand deeper inside a solid than the relocation allows (L318).
   const auto inside_solid = [&](AnchorEntry& e, int level) {
-    if (e.relocation_m <= s_.max_relocation_cells * cell_size(level)) return false;
+    const double relocation_m = e.capture_z - e.position_z;
+    if (relocation_m <= s_.max_relocation_cells * cell_size(level)) return false;
     if (!e.dropped_in_solid) {
       e.dropped_in_solid = true;
       ++dropped_in_solids_;
@@ -95,14 +96,16 @@ std::vector<CaptureRequest> ShGraphCore<Dim>::plan(const FrameContext& ctx) {
     // A shared centre too deep for a fine cell may still serve the coarser cell it centres.
     if (e.anchor.in_flight() || inside_solid(e, level)) return;
     if (!seen.insert(nodes_[j].key).second) return;
-    glm::dvec3 c = e.position;
+    const Key& key = nodes_[j].key;
+    glm::dvec3 c = anchor_point(key, e.position_z);
     if constexpr (Dim == 2) c.z = focus.now.z;  // horizontal distance on the sheet
     const int order_level = near_first ? -level : level;
     if (!e.anchor.has_coefficients()) {
-      cands.push_back({near_tier, order_level, near_first ? rank : 0, focus.distance(c),
-                       nodes_[j].key, e.capture});
+      cands.push_back({near_tier, order_level, near_first ? rank : 0, focus.distance(c), key,
+                       anchor_point(key, e.capture_z)});
     } else if (e.anchor.need_new()) {
-      cands.push_back({near_tier + 1, 0, 0, e.anchor.creation_time(), nodes_[j].key, e.capture});
+      cands.push_back(
+          {near_tier + 1, 0, 0, e.anchor.creation_time(), key, anchor_point(key, e.capture_z)});
     }
   };
   // The thesis' priority inside a split (L572): the centre, then the 8 corners, the 6 faces,

@@ -67,6 +67,14 @@ glm::dvec3 ShGraphCore<Dim>::anchor_position(const Key& key) const {
 }
 
 template <int Dim>
+glm::dvec3 ShGraphCore<Dim>::anchor_point(const Key& key, double z) const {
+  glm::dvec3 p = origin_;
+  for (int a = 0; a < 2; ++a) p[a] = origin_[a] + static_cast<double>(key[a]) * h_;
+  p.z = z;
+  return p;
+}
+
+template <int Dim>
 glm::dvec3 ShGraphCore<Dim>::capture_position(const glm::dvec3& nominal) const {
   // Out of terrain and canopy alike (L318): a cube map rendered inside a crown sees its
   // backfaces just as one inside a hill. Whether the move is small enough for the cell to keep
@@ -386,7 +394,7 @@ template <int Dim>
 glm::dvec3 ShGraphCore<Dim>::node_centre(std::int32_t i) const {
   if constexpr (Dim == 2) {
     // The sheet's height there: the anchor's, or what the anchor would be made with.
-    return nodes_[i].anchor != nullptr ? nodes_[i].anchor->position
+    return nodes_[i].anchor != nullptr ? anchor_point(nodes_[i].key, nodes_[i].anchor->position_z)
                                        : anchor_position(nodes_[i].key);
   }
   glm::dvec3 p = origin_;
@@ -416,6 +424,7 @@ template int ShGraphCore<2>::child_containing(std::int32_t, const Q&) const;
 template double ShGraphCore<2>::ground_at(double, double) const;
 template glm::dvec3 ShGraphCore<2>::anchor_position(const Key&) const;
 template glm::dvec3 ShGraphCore<2>::capture_position(const glm::dvec3&) const;
+template glm::dvec3 ShGraphCore<2>::anchor_point(const Key&, double) const;
 template std::int32_t ShGraphCore<2>::alloc_block();
 template void ShGraphCore<2>::init_child(std::int32_t, int, std::int32_t);
 template void ShGraphCore<2>::link_children(std::int32_t);
@@ -443,6 +452,7 @@ template int ShGraphCore<3>::child_containing(std::int32_t, const Q&) const;
 template double ShGraphCore<3>::ground_at(double, double) const;
 template glm::dvec3 ShGraphCore<3>::anchor_position(const Key&) const;
 template glm::dvec3 ShGraphCore<3>::capture_position(const glm::dvec3&) const;
+template glm::dvec3 ShGraphCore<3>::anchor_point(const Key&, double) const;
 template std::int32_t ShGraphCore<3>::alloc_block();
 template void ShGraphCore<3>::init_child(std::int32_t, int, std::int32_t);
 template void ShGraphCore<3>::link_children(std::int32_t);
