@@ -32,15 +32,18 @@
 namespace ambisim {
 
 // The anchor plus where it stands and how many nodes share it (the centre chain). Its x and y
-// are its key's (ShGraphCore::anchor_point); only the heights a key does not give are stored,
-// 24 bytes instead of the 80 of three points and a relocation (issue 15's memory target).
+// are its key's (ShGraphCore::anchor_point), so only its heights are stored: 24 bytes instead
+// of the 80 of three points and a relocation (issue 15's memory target).
 struct AnchorEntry {
   CoefficientAnchor anchor;
   // Where it is captured and its light is attributed (D14), in key units (h) from the origin:
   // what a lookup weighs by, beside the key's x and y (a volume only; a sheet weighs x and y).
-  // Next to the set's flag, so that a lookup's test of a cell reads one cache line of it.
+  // capture_z converted once, not per lookup, and next to the set's flag, so that a lookup's
+  // test of a cell reads one cache line of it.
   double capture_qz = 0.0;
-  double position_z = 0.0;  // nominal: the node centre's (on a sheet: the sheet's height there)
+  // Nominal: the node centre's (derivable from the key in a volume; on a sheet the ground's
+  // height there, a world query).
+  double position_z = 0.0;
   double capture_z = 0.0;   // moved up out of terrain and canopy (L318); the relocation is the
                             // difference from position_z
   double entered_at = 0.0;  // when its current run of sets began (the pattern blend, 7.6)

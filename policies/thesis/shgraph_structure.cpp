@@ -60,18 +60,16 @@ double ShGraphCore<Dim>::ground_at(double x, double y) const {
 
 template <int Dim>
 glm::dvec3 ShGraphCore<Dim>::anchor_position(const Key& key) const {
-  glm::dvec3 p = origin_;
-  for (int a = 0; a < Dim; ++a) p[a] = origin_[a] + static_cast<double>(key[a]) * h_;
-  if constexpr (Dim == 2) p.z = ground_at(p.x, p.y) + s_.sheet_height_m;
+  if constexpr (Dim == 3) return anchor_point(key, origin_.z + static_cast<double>(key[2]) * h_);
+  glm::dvec3 p = anchor_point(key, 0.0);
+  p.z = ground_at(p.x, p.y) + s_.sheet_height_m;
   return p;
 }
 
 template <int Dim>
 glm::dvec3 ShGraphCore<Dim>::anchor_point(const Key& key, double z) const {
-  glm::dvec3 p = origin_;
-  for (int a = 0; a < 2; ++a) p[a] = origin_[a] + static_cast<double>(key[a]) * h_;
-  p.z = z;
-  return p;
+  return {origin_.x + static_cast<double>(key[0]) * h_,
+          origin_.y + static_cast<double>(key[1]) * h_, z};
 }
 
 template <int Dim>
