@@ -506,7 +506,49 @@ void DemandPlanner::lookup_many(const LookupPoints& points, std::vector<LookupRe
   }
 }
 
-void DemandPlanner::reindex() {
+void DemandPlanner::carry_memos(std::span<const std::int32_t> new_slot, std::size_t tail_from) {
+  const auto build = static_cast<std::uint32_t>(index_builds_);
+  for (NearestMemo& m : nearest_memo_) {
+    if (m.build != build) continue;  // void already: plan() searches the new index
+    // The memo's probe is the nearest staying probe of the old index (or none is staying). If
+    // it stays, it survives the rebuild (only probes that left are dropped) and its slot moves
+    // down with the dropped ones before it; slots keep their order.
+    std::int64_t best = -1;
+    double best2 = std::numeric_limits<double>::infinity();
+    if (m.probe >= 0) {
+      const auto old = static_cast<std::size_t>(m.probe);
+      const std::int32_t s = new_slot.empty() ? m.probe : new_slot[old];
+      if (s < 0 || probes_[static_cast<std::size_t>(s)].fade_out_start >= 0.0) {
+        m.build = build - 1;  // it left: void
+        continue;
+      }
+      best = s;
+      const glm::dvec3 d = probes_[static_cast<std::size_t>(s)].position - m.at;
+      best2 = d.x * d.x + d.y * d.y + d.z * d.z;
+    }
+    // The tail's slots are all above the old index's: a tie keeps the lower, as nearest() does.
+    for (std::size_t i = tail_from; i < probes_.size(); ++i) {
+      if (probes_[i].fade_out_start >= 0.0) continue;
+      const glm::dvec3 d = probes_[i].position - m.at;
+      const double d2 = d.x * d.x + d.y * d.y + d.z * d.z;
+      if (d2 < best2) {
+        best2 = d2;
+        best = static_cast<std::int64_t>(i);
+      }
+    }
+    m = {m.id, m.at, build + 1, static_cast<std::int32_t>(best)};
+  }
+}
+
+void DemandPlanner::reindex(std::span<const std::int32_t> new_slot) {
+  // The probes the old index held, in the new slots: those before the first new slot of the
+  // old tail.
+  std::size_t tail_from = index_.size();
+  if (!new_slot.empty()) {
+    tail_from = 0;
+    for (std::size_t i = 0; i < index_.size(); ++i) tail_from += new_slot[i] >= 0 ? 1 : 0;
+  }
+  carry_memos(new_slot, tail_from);
   ++index_builds_;
   std::vector<glm::dvec3> positions(probes_.size());
   std::vector<double> radii(probes_.size());
@@ -989,10 +1031,15 @@ void DemandPlanner::update(const FrameContext& ctx) {
     ++dead;
   }
   if (dead > kUnindexedTail) {
+    std::vector<std::int32_t> new_slot(probes_.size(), -1);
+    std::int32_t kept = 0;
+    for (std::size_t i = 0; i < probes_.size(); ++i) {
+      if (!gone(probes_[i])) new_slot[i] = kept++;
+    }
     probes_.erase(
         std::remove_if(probes_.begin(), probes_.end(), [&](const Probe& q) { return gone(q); }),
         probes_.end());
-    reindex();
+    reindex(new_slot);
   }
   // Presences and values moved with the clock and the light: the looks and the far field's
   // sums follow.

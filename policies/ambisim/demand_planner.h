@@ -30,6 +30,7 @@
 //   lamps' current state (thesis 7.5.3), so a lamp switching costs no recapture.
 #include <cstdint>
 #include <map>
+#include <span>
 #include <vector>
 
 #include "policies/ambisim/far_field.h"
@@ -65,6 +66,9 @@ class DemandPlanner final : public Planner {
   // the benchmarks' profile.
   bool lookup_uses_far_field(const glm::dvec3& p) const;
   void set_receivers(const std::vector<ReceiverView>& receivers) override;
+  // Voids every receiver's nearest-probe memo: the next plan() searches the index for each, the
+  // reference the memos and their carrying over rebuilds are tested against.
+  void forget_nearest_memos() { nearest_memo_.clear(); }
   void describe_nodes(std::vector<ProbeNodeView>& out) const override;
 
   // Required probe spacing at distance d from the focus (before local refinement), at the
@@ -157,7 +161,13 @@ class DemandPlanner final : public Planner {
   // Faded out: weighs nothing, waits to be dropped from probes_.
   bool gone(const Probe& q) const;
   // Rebuilds the index and the far field over every probe (after the set changed).
-  void reindex();
+  // `new_slot`: where each slot of the probes before the change went (-1: dropped), or empty
+  // when none was dropped (slots unchanged).
+  void reindex(std::span<const std::int32_t> new_slot = {});
+  // Carries every receiver's memo of the current build over to the next one (see
+  // nearest_memo_), before the index is rebuilt over probes_, whose probes from slot
+  // `tail_from` on are the ones the rebuild adds.
+  void carry_memos(std::span<const std::int32_t> new_slot, std::size_t tail_from);
   // A probe's far-field sums now: its presence w, w x what it shows, w x its data time.
   void add_far_sums(std::size_t i, FarField::Sums& s) const;
   // looks_ and the far field's sums from the probes' presences, values and the light now (after
@@ -232,6 +242,10 @@ class DemandPlanner final : public Planner {
   // point and index build. Between rebuilds the indexed probes only leave (new ones join the
   // scanned tail), so while that probe stays it is still the nearest (ties go to the lower
   // slot in both): plan() then skips the index search, the bulk of its cost per receiver.
+  // A rebuild adds the tail to the index and drops probes that left (not staying): the new
+  // index's nearest is then the memo's probe or one of the tail's, so carry_memos() scans the
+  // tail for each memo instead of voiding it (each voided memo cost a search at the next
+  // plan(), about a quarter of BM_FrameReceivers/ambisim/1000's frame).
   // Likewise the tail: its probes only join (at the end) or leave, so the nearest of the tail
   // slots before tail_to, with the indexed one, stays the nearest of them while it stays, and
   // plan() scans only the probes delivered since (the whole tail, up to 32, for every receiver

@@ -233,3 +233,92 @@ TEST_CASE("ambisim fades a new probe in the slower the more it changes", "[ambis
   CHECK(settle_time(*fixed, static_cast<float>(std::exp(1.6))) ==
         Approx(0.4).margin(1.5 * frame_s));
 }
+
+TEST_CASE("ambisim's per-receiver memos plan what searching every receiver anew plans",
+          "[ambisim]") {
+  // Two planners fed the same frames; one forgets its memos before every plan(). Probes come
+  // (up to 6 captures per frame) and go (a 64-probe cap, a 2 s lifetime) so that the index is
+  // rebuilt often both ways: on deliveries and on dropping the probes that left. Receivers:
+  // some stand still for good, some are replaced by new ones every 40 frames and some move with
+  // the camera (a new point every frame).
+  const PlannerParams params =
+      planner_params_from_cli("ambisim", {"max_probes=64", "lifetime_s=2", "max_distance_m=60"});
+  DemandPlanner memo(params), fresh(params);
+  struct Flight {
+    CaptureRequest request;
+    double start;
+    std::int64_t due;
+  };
+  std::vector<Flight> flight;
+  std::size_t delivered = 0, requests = 0;
+  std::uint64_t next_id = 1000;
+  std::vector<Planner::ReceiverView> receivers;
+  for (std::int64_t f = 0; f < 1500; ++f) {
+    const double t = static_cast<double>(f) / 60.0;
+    const double a = 0.3 * t;  // the camera circles the origin at 24 m/s
+    const glm::dvec3 camera{80.0 * std::cos(a), 80.0 * std::sin(a), 2.0};
+    const glm::dvec3 velocity{-24.0 * std::sin(a), 24.0 * std::cos(a), 0.0};
+    if (f % 40 == 0) {
+      receivers.clear();
+      for (int i = 0; i < 20; ++i) {  // standing for good, ids 1..20
+        const double b = 0.3 * i;
+        receivers.push_back({static_cast<std::uint64_t>(i + 1),
+                             {80.0 * std::cos(b) + 3.0, 80.0 * std::sin(b) - 2.0, 1.0},
+                             glm::dvec3(0.0)});
+      }
+      for (int i = 0; i < 40; ++i) {  // replaced every 40 frames
+        receivers.push_back({next_id++,
+                             camera + glm::dvec3(1.7 * (i % 8) - 6.0, 2.3 * (i / 8) - 5.0, -1.0),
+                             glm::dvec3(0.0)});
+      }
+    }
+    receivers.resize(60);
+    for (int i = 0; i < 10; ++i) {  // with the camera, ids 100..109
+      receivers.push_back({static_cast<std::uint64_t>(100 + i),
+                           camera + glm::dvec3(0.8 * i, -1.5, -1.0), velocity});
+    }
+    FrameContext ctx = frame(t, camera, velocity, 6);
+    ctx.frame = f;
+    ctx.camera_cut = f == 0;
+    const int owed = static_cast<int>(flight.size());
+    ctx.startable_captures = std::max(0, 6 - owed);
+    memo.set_receivers(receivers);
+    fresh.set_receivers(receivers);
+    fresh.forget_nearest_memos();
+    const auto got = memo.plan(ctx);
+    const auto want = fresh.plan(ctx);
+    REQUIRE(got.size() == want.size());
+    for (std::size_t k = 0; k < got.size(); ++k) {
+      INFO("frame " << f << ", request " << k);
+      REQUIRE(got[k].position == want[k].position);
+      REQUIRE(got[k].tag == want[k].tag);
+    }
+    requests += got.size();
+    for (std::size_t k = 0; k < got.size(); ++k) {
+      if (static_cast<int>(k) < ctx.startable_captures) {
+        memo.started(got[k].tag);
+        fresh.started(got[k].tag);
+        flight.push_back({got[k], t, f + 3});
+      } else {
+        memo.refused(got[k].tag);
+        fresh.refused(got[k].tag);
+      }
+    }
+    memo.update(ctx);
+    fresh.update(ctx);
+    while (!flight.empty() && flight.front().due <= f) {
+      const Flight& c = flight.front();
+      const FinishedProbe probe{c.request.tag, c.request.position,
+                                constant_sh(static_cast<float>(1.0 + 0.01 * (delivered % 7))),
+                                c.start, t};
+      memo.deliver(probe);
+      fresh.deliver(probe);
+      flight.erase(flight.begin());
+      ++delivered;
+    }
+  }
+  // Far more probes came than the cap holds: many rebuilds dropped probes that had left.
+  CHECK(delivered > 20 * 64);
+  CHECK(requests >= delivered);
+  CHECK(memo.stats().live_probes == fresh.stats().live_probes);
+}
