@@ -979,6 +979,13 @@ void DemandPlanner::update(const FrameContext& ctx) {
     }
     light_now_ = scene_light(info);
   }
+  // A probe nearer to the camera than `inside` (squared) is nearer to the focus segment, which
+  // starts there, than its limit, 1.5 max_distance, by far more than the rounding of either
+  // distance: it stays without the segment distance (a division and a root per probe, most of
+  // this loop's cost).
+  const double limit = 1.5 * max_distance_;
+  const double inside = limit * limit * (1.0 - 1e-9);
+  std::size_t staying = 0;
   for (auto& q : probes_) {
     if (q.fade_in_start < 0.0) q.fade_in_start = now_;
     // Faded in (or leaving, which shows its own value): the set it faded from is not needed.
@@ -986,16 +993,18 @@ void DemandPlanner::update(const FrameContext& ctx) {
       pool_.release(q.from);
     }
     if (q.fade_out_start >= 0.0) continue;
-    if (now_ - q.data_time > lifetime_s_ || focus_.distance(q.position) > 1.5 * max_distance_) {
+    const glm::dvec3 v = q.position - focus_.now;
+    const bool near = v.x * v.x + v.y * v.y + v.z * v.z < inside;
+    if (now_ - q.data_time > lifetime_s_ || (!near && focus_.distance(q.position) > limit)) {
       q.fade_out_start = now_;
+    } else {
+      ++staying;
     }
   }
   // Over the cap: the farthest leave (fading), never the ones the camera is using; among equally
   // far ones the first in slot order. One pass and a partial sort: taking the farthest once per
   // probe over the cap rescanned every probe each time (a fifth of a frame's samples at 1e3
   // probes in BM_Frame/ambisim, where each frame's deliveries go over the cap).
-  std::size_t staying = 0;
-  for (const auto& q : probes_) staying += q.fade_out_start < 0.0 ? 1 : 0;
   if (staying > max_probes_) {
     struct Far {
       double distance;
