@@ -20,6 +20,15 @@ inline std::uint64_t pack_cell(int x, int y, int z) {
   return u(x) | (u(y) << kCellKeyFieldBits) | (u(z) << (2 * kCellKeyFieldBits));
 }
 
+// The coordinates pack_cell() packed into key (not kEmptyCellKey).
+inline void unpack_cell(std::uint64_t key, int& x, int& y, int& z) {
+  constexpr std::uint64_t kMask = (std::uint64_t{1} << kCellKeyFieldBits) - 1;
+  const auto v = [](std::uint64_t field) { return static_cast<int>(field) - kCellCoordLimit; };
+  x = v(key & kMask);
+  y = v((key >> kCellKeyFieldBits) & kMask);
+  z = v((key >> (2 * kCellKeyFieldBits)) & kMask);
+}
+
 // What to add to pack_cell(x, y, z) for the key of (x + dx, y + dy, z + dz), dx, dy, dz in
 // {0, 1}, where every coordinate stays within the limits (then no field carries).
 inline constexpr std::uint64_t cell_key_step(int dx, int dy, int dz) {

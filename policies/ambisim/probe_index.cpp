@@ -100,10 +100,14 @@ void ProbeIndex::build(std::span<const glm::dvec3> positions, std::span<const do
       }
     }
     level.filter.reset(cells);
+    level.columns.reset(cells);
     std::uint32_t next = 0;
     for (Cell& c : level.table) {
       if (c.key == kEmpty) continue;
       level.filter.add(hash(c.key));
+      int cx, cy, cz;
+      unpack_cell(c.key, cx, cy, cz);
+      level.columns.add(hash(column_key(cx, cy)));
       c.begin = next;
       next += c.count;
       c.count = 0;
@@ -127,7 +131,7 @@ std::size_t ProbeIndex::bytes() const {
   std::size_t b = levels_.capacity() * sizeof(Level);
   for (const Level& level : levels_) {
     b += level.table.capacity() * sizeof(Cell) + level.slots.capacity() * sizeof(std::uint32_t) +
-         level.reach.capacity() * sizeof(Reach) + level.filter.bytes();
+         level.reach.capacity() * sizeof(Reach) + level.filter.bytes() + level.columns.bytes();
   }
   return b;
 }

@@ -80,6 +80,88 @@ TEST_CASE("the probe index finds every slot whose radius reaches a point, and th
   CHECK(std::isinf(d));
 }
 
+TEST_CASE("the probe index's nearest is the brute force's over terrain, many levels and ties",
+          "[ambisim][index]") {
+  // Brute force: the least squared distance among accepted slots, ties to the lower slot.
+  auto brute = [](const std::vector<glm::dvec3>& positions, const glm::dvec3& p, auto accept) {
+    double best2 = std::numeric_limits<double>::infinity();
+    std::int64_t best = -1;
+    for (std::uint32_t s = 0; s < positions.size(); ++s) {
+      if (!accept(s)) continue;
+      const glm::dvec3 d = positions[s] - p;
+      const double d2 = d.x * d.x + d.y * d.y + d.z * d.z;
+      if (d2 < best2) {
+        best2 = d2;
+        best = s;
+      }
+    }
+    return best;
+  };
+  std::mt19937_64 rng(43);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  // Over terrain: probes a few metres above hilly ground (200 m of relief), dense along a path
+  // and sparse elsewhere, in two levels; each tenth probe repeats an earlier one's position
+  // (a tie the lower slot wins). Queries in the same band, near and far from the probes.
+  auto ground = [](double x, double y) {
+    return 100.0 * std::sin(x / 300.0) * std::cos(y / 250.0);
+  };
+  std::vector<glm::dvec3> positions;
+  std::vector<double> radii;
+  for (int i = 0; i < 2000; ++i) {
+    glm::dvec3 p;
+    if (i % 10 == 9) {
+      p = positions[static_cast<std::size_t>(rng() % positions.size())];
+    } else if (i % 4 == 0) {
+      const double s = 2000.0 * u(rng);
+      p = {s - 1000.0, 30.0 * std::sin(s / 90.0), 0.0};
+    } else {
+      p = {2000.0 * u(rng) - 1000.0, 2000.0 * u(rng) - 1000.0, 0.0};
+    }
+    p.z = ground(p.x, p.y) + 2.0 + 3.0 * u(rng);
+    positions.push_back(p);
+    radii.push_back(i % 4 == 0 ? 2.25 : 7.2);
+  }
+  ProbeIndex index;
+  index.build(positions, radii);
+  auto position_of = [&](std::uint32_t i) -> const glm::dvec3& { return positions[i]; };
+  auto all = [](std::uint32_t) { return true; };
+  auto most = [](std::uint32_t i) { return i % 3 != 0; };
+  for (int k = 0; k < 600; ++k) {
+    const double x = 2400.0 * u(rng) - 1200.0,
+                 y = k % 2 ? 40.0 * u(rng) - 20.0 : 2400.0 * u(rng) - 1200.0;
+    const glm::dvec3 p{x, y, ground(x, y) + 1.0};
+    double d = 0.0;
+    INFO("query " << p.x << " " << p.y << " " << p.z);
+    CHECK(index.nearest(p, position_of, all, &d) == brute(positions, p, all));
+    CHECK(index.nearest(p, position_of, most, &d) == brute(positions, p, most));
+  }
+  // Radii over 30 octaves: more levels than nearest() interleaves (24); the rest are searched
+  // one after another.
+  std::vector<glm::dvec3> spread;
+  std::vector<double> octaves;
+  for (int i = 0; i < 300; ++i) {
+    spread.push_back({1000.0 * u(rng) - 500.0, 1000.0 * u(rng) - 500.0, 50.0 * u(rng)});
+    octaves.push_back(std::ldexp(0.75, i % 30));
+  }
+  ProbeIndex deep;
+  deep.build(spread, octaves);
+  auto spread_of = [&](std::uint32_t i) -> const glm::dvec3& { return spread[i]; };
+  for (int k = 0; k < 200; ++k) {
+    const glm::dvec3 p{1200.0 * u(rng) - 600.0, 1200.0 * u(rng) - 600.0, 60.0 * u(rng) - 5.0};
+    double d = 0.0;
+    CHECK(deep.nearest(p, spread_of, most, &d) == brute(spread, p, most));
+  }
+}
+
+TEST_CASE("cell keys unpack to the coordinates packed", "[ambisim][index]") {
+  for (const glm::ivec3 c : {glm::ivec3(0), glm::ivec3(-1, 2, -3), glm::ivec3(kCellCoordLimit - 1),
+                             glm::ivec3(-kCellCoordLimit), glm::ivec3(123456, -654321, 7)}) {
+    int x = 0, y = 0, z = 0;
+    unpack_cell(pack_cell(c.x, c.y, c.z), x, y, z);
+    CHECK(glm::ivec3(x, y, z) == c);
+  }
+}
+
 TEST_CASE("ambisim's indexed lookups equal its linear scan, in and beyond the world",
           "[ambisim][index]") {
   test::TestWorld world;
