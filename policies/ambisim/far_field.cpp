@@ -101,7 +101,7 @@ void FarField::sum_up_from(std::size_t from) {
 
 void FarField::mark(std::size_t slot) {
   if (members_stale_) return;  // the next refill is a full one
-  levels_[0].marked[static_cast<std::size_t>(cell_of_slot_[slot])] = 1;
+  levels_[0].mark_cell(cell_of_slot_[slot]);
 }
 
 void FarField::index_members() {
@@ -112,6 +112,7 @@ void FarField::index_members() {
     const std::size_t cells = level.cells.size();
     level.first.assign(cells + 1, 0);
     level.marked.assign(cells, 0);
+    level.marked_cells.clear();
     const std::size_t n = k == 0 ? cell_of_slot_.size() : levels_[k - 1].cells.size();
     auto owner = [&](std::size_t i) {
       return static_cast<std::size_t>(k == 0 ? cell_of_slot_[i] : levels_[k - 1].parent[i]);
@@ -168,7 +169,7 @@ void FarField::append(const glm::dvec3& position) {
   }
   // Its cell is redone at the next refill (a new cell's ancestors with it: they are marked up
   // from it).
-  levels_[0].marked[static_cast<std::size_t>(cell)] = 1;
+  levels_[0].mark_cell(cell);
 }
 
 bool FarField::evaluate(const glm::dvec3& p, Answer& out, CornerMemo* memo) const {
@@ -231,7 +232,8 @@ std::size_t FarField::bytes() const {
          l.filter.bytes() + l.cells.capacity() * sizeof(Sums) +
          l.cell_keys.capacity() * sizeof(std::uint64_t) +
          l.parent.capacity() * sizeof(std::int32_t) + l.first.capacity() * sizeof(std::int32_t) +
-         l.members.capacity() * sizeof(std::int32_t) + l.marked.capacity();
+         l.members.capacity() * sizeof(std::int32_t) + l.marked.capacity() +
+         l.marked_cells.capacity() * sizeof(std::int32_t);
   }
   return b;
 }

@@ -127,6 +127,19 @@ class FarField {
     std::vector<std::int32_t> first;
     std::vector<std::int32_t> members;
     std::vector<std::uint8_t> marked;
+    // The marked cells, each once, in the order marked: a refill visits these, not every cell's
+    // flag (a frame marks a few dozen of a thousand cells). The order does not change a sum.
+    std::vector<std::int32_t> marked_cells;
+    void mark_cell(std::int32_t c) {
+      auto& flag = marked[static_cast<std::size_t>(c)];
+      if (flag) return;
+      flag = 1;
+      marked_cells.push_back(c);
+    }
+    void clear_marks() {
+      for (const std::int32_t c : marked_cells) marked[static_cast<std::size_t>(c)] = 0;
+      marked_cells.clear();
+    }
     std::int32_t find(std::uint64_t key) const;  // its cell, or -1
     std::int32_t find_or_insert(std::uint64_t key, bool* inserted);
     void grow();
@@ -165,7 +178,7 @@ template <class AddSlot>
 void FarField::fill(AddSlot&& add) {
   for (Level& level : levels_) {
     for (Sums& s : level.cells) s = Sums{};
-    std::fill(level.marked.begin(), level.marked.end(), std::uint8_t{0});
+    level.clear_marks();
   }
   for (std::size_t i = 0; i < cell_of_slot_.size(); ++i) {
     add(i, levels_[0].cells[static_cast<std::size_t>(cell_of_slot_[i])]);
@@ -181,25 +194,24 @@ void FarField::refill_marked(AddSlot&& add) {
     return;
   }
   Level& base = levels_[0];
-  for (std::size_t c = 0; c < base.cells.size(); ++c) {
-    if (!base.marked[c]) continue;
-    Sums& s = base.cells[c] = Sums{};
-    for (std::int32_t m = base.first[c]; m < base.first[c + 1]; ++m) {
+  for (const std::int32_t c : base.marked_cells) {
+    Sums& s = base.cells[static_cast<std::size_t>(c)] = Sums{};
+    for (std::int32_t m = base.first[static_cast<std::size_t>(c)];
+         m < base.first[static_cast<std::size_t>(c) + 1]; ++m) {
       add(static_cast<std::size_t>(base.members[static_cast<std::size_t>(m)]), s);
     }
   }
   for (std::size_t k = 0; k + 1 < levels_.size(); ++k) {
     Level& level = levels_[k];
     Level& up = levels_[k + 1];
-    for (std::size_t c = 0; c < level.cells.size(); ++c) {
-      if (!level.marked[c]) continue;
-      up.marked[static_cast<std::size_t>(level.parent[c])] = 1;
-      level.marked[c] = 0;
+    for (const std::int32_t c : level.marked_cells) {
+      up.mark_cell(level.parent[static_cast<std::size_t>(c)]);
     }
-    for (std::size_t c = 0; c < up.cells.size(); ++c) {
-      if (!up.marked[c]) continue;
-      Sums& to = up.cells[c] = Sums{};
-      for (std::int32_t m = up.first[c]; m < up.first[c + 1]; ++m) {
+    level.clear_marks();
+    for (const std::int32_t c : up.marked_cells) {
+      const auto u = static_cast<std::size_t>(c);
+      Sums& to = up.cells[u] = Sums{};
+      for (std::int32_t m = up.first[u]; m < up.first[u + 1]; ++m) {
         const Sums& from =
             level.cells[static_cast<std::size_t>(up.members[static_cast<std::size_t>(m)])];
         to.sh += from.sh;
@@ -208,7 +220,7 @@ void FarField::refill_marked(AddSlot&& add) {
       }
     }
   }
-  std::fill(levels_.back().marked.begin(), levels_.back().marked.end(), std::uint8_t{0});
+  levels_.back().clear_marks();
   sum_up_from(levels_.size() - 1);
 }
 
