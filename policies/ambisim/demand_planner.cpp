@@ -606,10 +606,15 @@ void DemandPlanner::follow_probes(bool all) {
   const bool pyramid = uses_pyramid();
   looks_.resize(probes_.size());
   far_steady_.resize(probes_.size(), 0);
+  const bool each = all || light_moved || now_ < far_time_;
   for (std::size_t i = 0; i < probes_.size(); ++i) {
     const Probe& q = probes_[i];
+    // Steady at the last call and not leaving now: still steady (a fade-in's fraction only
+    // grows with the clock; a refresh, which starts a new one, clears far_steady_), with the
+    // look and sums it had. Skips the fraction's division for most probes of a frame.
+    if (!each && far_steady_[i] && q.fade_out_start < 0.0) continue;
     const bool steady = q.fade_out_start < 0.0 && fade_in_fraction(q) >= 1.0;
-    if (all || light_moved || !steady || !far_steady_[i]) {
+    if (each || !steady || !far_steady_[i]) {
       looks_[i] = look_of(q);
       if (pyramid) far_.mark(i);
     }
@@ -617,6 +622,7 @@ void DemandPlanner::follow_probes(bool all) {
   }
   far_light_ = light_now_;
   far_lamp_level_ = lamp_level_;
+  far_time_ = now_;
   if (pyramid) far_.refill_marked([this](std::size_t i, FarField::Sums& s) { add_far_sums(i, s); });
 }
 
@@ -914,7 +920,8 @@ void DemandPlanner::deliver(const FinishedProbe& probe) {
     // What lookups read of it changed now, not at the next update().
     const auto slot = static_cast<std::size_t>(q - probes_.data());
     if (slot < looks_.size()) looks_[slot] = look_of(*q);
-    if (uses_pyramid()) far_.mark(slot);  // its sums change at the next fill
+    if (slot < far_steady_.size()) far_steady_[slot] = 0;  // fading in again
+    if (uses_pyramid()) far_.mark(slot);                   // its sums change at the next fill
     return;
   }
   Probe q;
@@ -1040,14 +1047,17 @@ void DemandPlanner::update(const FrameContext& ctx) {
     ++dead;
   }
   if (dead > kUnindexedTail) {
+    // One pass decides who stays and moves them down; the same map then carries the receivers'
+    // memos to the probes' new slots.
     std::vector<std::int32_t> new_slot(probes_.size(), -1);
-    std::int32_t kept = 0;
+    std::size_t kept = 0;
     for (std::size_t i = 0; i < probes_.size(); ++i) {
-      if (!gone(probes_[i])) new_slot[i] = kept++;
+      if (gone(probes_[i])) continue;
+      new_slot[i] = static_cast<std::int32_t>(kept);
+      if (kept != i) probes_[kept] = std::move(probes_[i]);
+      ++kept;
     }
-    probes_.erase(
-        std::remove_if(probes_.begin(), probes_.end(), [&](const Probe& q) { return gone(q); }),
-        probes_.end());
+    probes_.resize(kept);
     reindex(new_slot);
   }
   // Presences and values moved with the clock and the light: the looks and the far field's

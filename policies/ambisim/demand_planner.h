@@ -277,6 +277,8 @@ class DemandPlanner final : public Planner {
   std::vector<std::uint8_t> far_steady_;
   Rgb far_light_{0.0f};
   double far_lamp_level_ = 0.0;
+  double far_time_ = 0.0;  // the clock at the last follow_probes(): a steady probe stays steady
+                           // only while it does not run back
   std::map<std::uint64_t, Pending> planned_;  // returned by plan(), not yet started
   std::map<std::uint64_t, Pending> in_flight_;
 };

@@ -193,3 +193,41 @@ TEST_CASE("ambisim learns how much of the world's rate a probe's light follows",
   // The sensitivity converges to the observed 0.25 (halfway each refresh): 16 s.
   CHECK(interval(true) == Approx(16.0).margin(1.0));
 }
+
+TEST_CASE("ambisim's far field follows refreshed probes: lookups equal the linear scan",
+          "[ambisim]") {
+  // Without the rescale the light level never moves the far field's sums: only fades and
+  // refreshes do, and follow_probes() redoes just the probes that are not steady. The light
+  // near the origin keeps changing, so each refresh (every 4 s) brings a new value that fades
+  // in; a refreshed probe left out of the next refill would leave the far field's sums on its
+  // old value, and lookups that read the far field off the linear scan's.
+  auto p = make_planner("ambisim", params({"learn_sensitivity=false", "rescale=false"}));
+  auto* ambisim = dynamic_cast<DemandPlanner*>(p.get());
+  REQUIRE(ambisim != nullptr);
+  TestWorld w;
+  w.rate = [](const glm::dvec3& q, double) { return std::hypot(q.x, q.y) < 10.0 ? 0.01 : 0.0; };
+  w.base_light = [](const glm::dvec3& q, double t) {
+    const float near = std::hypot(q.x, q.y) < 10.0 ? static_cast<float>(0.02 * t) : 0.0f;
+    return Rgb(0.5f + near, 0.6f, 0.4f + 0.5f * near);
+  };
+  Harness h{*p, w};
+  std::size_t far_read = 0;
+  for (int round = 0; round < 40; ++round) {
+    h.run_until(h.time() + 0.75);
+    for (double x = -60.0; x <= 60.0; x += 6.5) {
+      for (double y = -30.0; y <= 30.0; y += 7.5) {
+        const glm::dvec3 q{x, y, 1.2};
+        if (!ambisim->lookup_uses_far_field(q)) continue;
+        ++far_read;
+        const LookupResult fast = p->lookup(q), slow = ambisim->lookup_reference(q);
+        INFO("t " << h.time() << " at " << x << " " << y);
+        for (int i = 0; i < kShCount; ++i) {
+          for (int ch = 0; ch < 3; ++ch) {
+            REQUIRE(std::abs(fast.sh.c[i][ch] - slow.sh.c[i][ch]) <= 1e-5f);
+          }
+        }
+      }
+    }
+  }
+  CHECK(far_read > 100);
+}
