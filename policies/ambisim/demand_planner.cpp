@@ -611,14 +611,12 @@ void DemandPlanner::follow_probes(bool all) {
     const Probe& q = probes_[i];
     // Steady at the last call and not leaving now: still steady (a fade-in's fraction only
     // grows with the clock; a refresh, which starts a new one, clears far_steady_), with the
-    // look and sums it had. Skips the fraction's division for most probes of a frame.
+    // look and sums it had. Skips the fraction's division for most probes of a frame; every
+    // other probe's look and sums are redone.
     if (!each && far_steady_[i] && q.fade_out_start < 0.0) continue;
-    const bool steady = q.fade_out_start < 0.0 && fade_in_fraction(q) >= 1.0;
-    if (each || !steady || !far_steady_[i]) {
-      looks_[i] = look_of(q);
-      if (pyramid) far_.mark(i);
-    }
-    far_steady_[i] = steady ? 1 : 0;
+    looks_[i] = look_of(q);
+    if (pyramid) far_.mark(i);
+    far_steady_[i] = q.fade_out_start < 0.0 && fade_in_fraction(q) >= 1.0 ? 1 : 0;
   }
   far_light_ = light_now_;
   far_lamp_level_ = lamp_level_;

@@ -195,9 +195,9 @@ void FarField::refill_marked(AddSlot&& add) {
   }
   Level& base = levels_[0];
   for (const std::int32_t c : base.marked_cells) {
-    Sums& s = base.cells[static_cast<std::size_t>(c)] = Sums{};
-    for (std::int32_t m = base.first[static_cast<std::size_t>(c)];
-         m < base.first[static_cast<std::size_t>(c) + 1]; ++m) {
+    const auto u = static_cast<std::size_t>(c);
+    Sums& s = base.cells[u] = Sums{};
+    for (std::int32_t m = base.first[u]; m < base.first[u + 1]; ++m) {
       add(static_cast<std::size_t>(base.members[static_cast<std::size_t>(m)]), s);
     }
   }
